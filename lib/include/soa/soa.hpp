@@ -1,0 +1,16 @@
+/// \file
+/// Everything in the `soa` library.
+#pragma once
+
+#include "soa/coriolis.hpp"
+#include "soa/error.hpp"
+#include "soa/free_body.hpp"
+#include "soa/phi.hpp"
+#include "soa/pose.hpp"
+#include "soa/rigid_body.hpp"
+#include "soa/rotation.hpp"
+#include "soa/spatial_cross.hpp"
+#include "soa/spatial_inertia.hpp"
+#include "soa/spatial_vector.hpp"
+#include "soa/tilde.hpp"
+#include "soa/types.hpp"

@@ -1,0 +1,108 @@
+/// \file
+/// Spatial inertia (slides 64-77).
+#pragma once
+
+#include <string>
+
+#include "soa/error.hpp"
+#include "soa/phi.hpp"
+#include "soa/spatial_vector.hpp"
+#include "soa/tilde.hpp"
+
+namespace soa {
+
+/// The spatial inertia of a rigid body about a point x of it (slide 68):
+/// \f[ M(x) = \begin{pmatrix} J(x) & m\tilde p(x) \\ -m\tilde p(x) & m I \end{pmatrix},
+/// \qquad p(x) = l(x, C), \f]
+/// stored as \f$(m,\ m p,\ J(x))\f$: ten numbers, never the 6x6.
+template <class S>
+class SpatialInertiaT {
+ public:
+  /// The zero inertia (no body), the start of a sum of inertias.
+  SpatialInertiaT() : m_(0), h_(Vec3<S>::Zero()), J_(Mat3<S>::Zero()) {}
+
+  /// From the mass, the first moment \f$h = m\, p(x)\f$ and \f$J(x)\f$ about x, as stored.
+  SpatialInertiaT(S m, const Vec3<S>& h, const Mat3<S>& J) : m_(m), h_(h), J_(J) {}
+
+  /// From the mass \f$m > 0\f$, the centre of mass \f$p(x) = l(x, C)\f$ and the inertia
+  /// \f$J(C)\f$ about the centre of mass, by the parallel axis theorem (slide 66):
+  /// \f$J(x) = J(C) - m\,\tilde p(x)\,\tilde p(x)\f$.
+  /// Refuses (soa::Error) a mass that is not positive, anything not finite, a \f$J(C)\f$
+  /// that is not symmetric.
+  static SpatialInertiaT from_cm(S m, const Vec3<S>& p, const Mat3<S>& J_C) {
+    require_finite_scalar(m, "SpatialInertia: mass");
+    require_finite(p, "SpatialInertia: center of mass");
+    require_finite(J_C, "SpatialInertia: inertia");
+    if (!(m > S(0)))
+      throw Error("SpatialInertia: mass must be positive (got " + std::to_string(double(m)) + ")");
+    if ((J_C - J_C.transpose()).cwiseAbs().maxCoeff() > S(64) * eps<S>() * J_C.norm())
+      throw Error("SpatialInertia: inertia not symmetric");
+    const Mat3<S> P = tilde(p);
+    return SpatialInertiaT(m, m * p, J_C - m * P * P);
+  }
+
+  S mass() const { return m_; }            ///< \f$m\f$
+  const Vec3<S>& h() const { return h_; }  ///< \f$m\, p(x)\f$
+  Vec3<S> p() const { return h_ / m_; }    ///< \f$p(x) = l(x, C)\f$
+  const Mat3<S>& J() const { return J_; }  ///< \f$J(x)\f$
+  /// \f$J(C) = J(x) + m\,\tilde p\,\tilde p\f$ (slide 66, read backwards).
+  Mat3<S> J_cm() const {
+    const Mat3<S> H = tilde(h_);
+    return J_ + H * H / m_;
+  }
+
+  /// The 6x6 matrix, for teaching and tests.
+  Mat6<S> matrix() const {
+    Mat6<S> M;
+    const Mat3<S> H = tilde(h_);
+    M << J_, H, -H, m_ * Mat3<S>::Identity();
+    return M;
+  }
+
+  /// \f$h(x) = M(x)\, V(x) = [J\omega + m p \times v;\ m v - m p \times \omega]\f$
+  /// (slide 76).
+  MomentumT<S> operator*(const VelocityT<S>& V) const {
+    const Vec3<S> w = V.angular(), v = V.linear();
+    return MomentumT<S>(J_ * w + h_.cross(v), m_ * v - h_.cross(w));
+  }
+  /// \f$M(x)\,\alpha(x)\f$, a force (the inertial term of \f$f = M\alpha + b\f$).
+  ForceT<S> operator*(const AccelerationT<S>& a) const {
+    const Vec3<S> w = a.angular(), v = a.linear();
+    return ForceT<S>(J_ * w + h_.cross(v), m_ * v - h_.cross(w));
+  }
+
+  /// Kinetic energy \f$\tfrac12 V^*(x)\, M(x)\, V(x)\f$, the same at every point (slide 72).
+  S kinetic_energy(const VelocityT<S>& V) const { return dot(*this * V, V) / S(2); }
+
+  /// Sum of two inertias about the same point (slide 74).
+  SpatialInertiaT operator+(const SpatialInertiaT& b) const {
+    return SpatialInertiaT(m_ + b.m_, h_ + b.h_, J_ + b.J_);
+  }
+
+  template <class T>
+  SpatialInertiaT<T> cast() const {
+    return SpatialInertiaT<T>(T(m_), h_.template cast<T>(), J_.template cast<T>());
+  }
+
+ private:
+  S m_;
+  Vec3<S> h_;
+  Mat3<S> J_;
+};
+using SpatialInertia = SpatialInertiaT<double>;
+
+/// The parallel axis theorem for spatial inertias (slide 70):
+/// \f$M(x) = \phi(x,y)\, M(y)\, \phi^*(x,y)\f$, in \f$(m, mp, J)\f$ form. With
+/// \f$R = {}^xR_y\f$, \f$l = {}^x l(x,y)\f$, \f$h' = R\,h(y)\f$, \f$J' = R\,J(y)\,R^*\f$:
+/// \f[ h(x) = h' + m l, \qquad
+///     J(x) = J' - \tilde l\,\tilde h' - \tilde h'\,\tilde l - m\,\tilde l\,\tilde l . \f]
+template <class S>
+SpatialInertiaT<S> transform(const PhiT<S>& phi_xy, const SpatialInertiaT<S>& M_y) {
+  const S m = M_y.mass();
+  const Vec3<S> h = phi_xy.R() * M_y.h();
+  const Mat3<S> J = phi_xy.R() * M_y.J() * phi_xy.R().transpose();
+  const Mat3<S> L = tilde(phi_xy.l()), H = tilde(h);
+  return SpatialInertiaT<S>(m, h + m * phi_xy.l(), J - L * H - H * L - m * L * L);
+}
+
+}  // namespace soa

@@ -1,0 +1,30 @@
+// Explicit instantiations of the library's class templates in the three precisions the
+// course uses: a template that does not compile for float or long double fails here.
+#include "soa/soa.hpp"
+
+namespace soa {
+
+#define SOA_INSTANTIATE(S)                           \
+  template class PoseT<S>;                           \
+  template class PhiT<S>;                            \
+  template class SpatialInertiaT<S>;                 \
+  template class UnitQuaternionT<S>;                 \
+  template struct AxisAngleT<S>;                     \
+  template struct GibbsT<S>;                         \
+  template struct CayleyT<S>;                        \
+  template struct EulerZYXT<S>;                      \
+  template class SpatialVector<S, VelocityKind>;     \
+  template class SpatialVector<S, AccelerationKind>; \
+  template class SpatialVector<S, ForceKind>;        \
+  template class SpatialVector<S, MomentumKind>;     \
+  template Vec3<S> log_so3<S>(const Mat3<S>&);       \
+  template Mat3<S> exp_so3<S>(const Vec3<S>&);       \
+  template FreeBodyStateT<S> rk4_step<S>(const SpatialInertiaT<S>&, const FreeBodyStateT<S>&, S);
+
+SOA_INSTANTIATE(float)
+SOA_INSTANTIATE(double)
+SOA_INSTANTIATE(long double)
+
+#undef SOA_INSTANTIATE
+
+}  // namespace soa
