@@ -9,6 +9,7 @@ foreach(entry IN LISTS lessons)
   list(GET parts 0 dir)
   list(GET parts 1 exe)
   set(out_dir "${OUT}/${dir}")
+  file(REMOVE_RECURSE "${out_dir}")  # no stale figure outlives the lesson that drew it
   file(MAKE_DIRECTORY "${out_dir}")
   execute_process(COMMAND "${exe}" "${out_dir}" OUTPUT_VARIABLE out ERROR_VARIABLE err
                   RESULT_VARIABLE rc)

@@ -61,13 +61,17 @@ class Worst {
  public:
   explicit Worst(std::string what) : what_(std::move(what)) {}
   ~Worst() {
+    if (where_ < 0) {  // no case ran to the end (the test stopped on an exception)
+      std::printf("[ worst    ] %-52s no case recorded\n", what_.c_str());
+      return;
+    }
     std::printf("[ worst    ] %-52s %.3e (case %d)\n", what_.c_str(), value_, where_);
     testing::Test::RecordProperty("worst_" + what_, std::to_string(value_));
   }
   /// Records \p residual of case \p i; NaN counts as infinitely bad.
   void add(double residual, int i) {
     if (std::isnan(residual)) residual = INFINITY;
-    if (residual > value_) {
+    if (residual > value_ || where_ < 0) {
       value_ = residual;
       where_ = i;
     }

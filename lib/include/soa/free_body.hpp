@@ -42,7 +42,8 @@ FreeBodyRateT<S> free_body_rate(const SpatialInertiaT<S>& M, const FreeBodyState
   FreeBodyRateT<S> d;
   d.omega = w;
   d.r_dot = x.q.rotate(v);
-  d.V_dot << alpha.angular(), Vec3<S>(alpha.linear()) - w.cross(v);
+  d.V_dot.template head<3>() = alpha.angular();
+  d.V_dot.template tail<3>() = Vec3<S>(alpha.linear()) - w.cross(v);
   return d;
 }
 

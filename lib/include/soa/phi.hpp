@@ -48,8 +48,8 @@ class PhiT {
   SpatialVector<S, K> transpose_apply(const SpatialVector<S, K>& V) const {
     static_assert(K::is_motion, "phi* applies to velocities; forces take phi (slide 50)");
     const Vec3<S> w = V.angular();
-    return SpatialVector<S, K>(R().transpose() * w,
-                               R().transpose() * (Vec3<S>(V.linear()) + w.cross(l())));
+    const Vec3<S> v = Vec3<S>(V.linear()) + w.cross(l());
+    return SpatialVector<S, K>(transpose_times(w), transpose_times(v));
   }
 
   /// \f$\phi(x,z) = \phi(x,y)\,\phi(y,z)\f$ (slide 45), i.e. \f${}^xT_z = {}^xT_y\,{}^yT_z\f$.
@@ -73,6 +73,11 @@ class PhiT {
   }
 
  private:
+  // R^* x as three column dot products (faster than Eigen's transposed product here).
+  Vec3<S> transpose_times(const Vec3<S>& x) const {
+    return Vec3<S>(R().col(0).dot(x), R().col(1).dot(x), R().col(2).dot(x));
+  }
+
   PoseT<S> T_;
 };
 using Phi = PhiT<double>;

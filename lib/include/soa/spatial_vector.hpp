@@ -38,7 +38,10 @@ class SpatialVector {
   SpatialVector() : v_(Vec6<S>::Zero()) {}
   /// From the angular part (\f$\omega\f$ or the moment \f$N\f$) and the linear part
   /// (\f$v\f$ or the force \f$F\f$).
-  SpatialVector(const Vec3<S>& angular, const Vec3<S>& linear) { v_ << angular, linear; }
+  SpatialVector(const Vec3<S>& angular, const Vec3<S>& linear) {
+    v_.template head<3>() = angular;
+    v_.template tail<3>() = linear;
+  }
   /// From the six coefficients, angular first.
   explicit SpatialVector(const Vec6<S>& v) : v_(v) {}
   static SpatialVector Zero() { return SpatialVector(); }

@@ -21,7 +21,11 @@ Mat3<S> cayley(const Vec3<S>& c) {
 /// is, at \f$\theta = \pi\f$ (soa::Error as for GibbsT).
 template <class S>
 Vec3<S> cayley_inverse(const Mat3<S>& R) {
-  return S(2) * GibbsT<S>::from_matrix(R).g;
+  const UnitQuaternionT<S> q = UnitQuaternionT<S>::from_matrix(R);
+  if (std::abs(q.q0()) < std::sqrt(eps<S>()))
+    throw Error("Cayley parameters: undefined at theta = pi (|q0| = " +
+                std::to_string(double(std::abs(q.q0()))) + ")");
+  return S(2) * GibbsT<S>::from_quaternion(q).g;
 }
 
 /// Cayley parameters \f$c = 2\tan(\theta/2)\, n\f$: three numbers, non-singular near the

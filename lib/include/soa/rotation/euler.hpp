@@ -17,11 +17,14 @@ namespace soa {
 /// [-\pi/2, \pi/2]\f$.
 ///
 /// Gimbal lock (documented fallback): at \f$\vartheta = \pm\pi/2\f$ only \f$\psi \mp
-/// \varphi\f$ is defined. When \f$|\cos\vartheta| < \sqrt{\varepsilon}\f$, from_matrix() sets
-/// \f$\varphi = 0\f$ and gives the whole turn about the vertical to \f$\psi\f$. Everywhere,
-/// \f$\psi\f$ is solved last from \f$\exp(\psi\tilde e_3) = R\,\exp(-\varphi\tilde e_1)
-/// \exp(-\vartheta\tilde e_2)\f$, so the angles reproduce \f$R\f$ to rounding even near the
-/// lock, where the individual angles are ill-conditioned.
+/// \varphi\f$ is defined. When \f$|\cos\vartheta| < 4\varepsilon\f$ (the lock to rounding),
+/// from_matrix() sets \f$\varphi = 0\f$ and gives the whole turn about the vertical to
+/// \f$\psi\f$. The band is that narrow because setting \f$\varphi = 0\f$ changes \f$R\f$ by
+/// about \f$|\cos\vartheta\,\sin\varphi|\f$ (a band of \f$\sqrt\varepsilon\f$ lost half the
+/// digits of \f$R\f$ at \f$\vartheta = \pi/2 - 10^{-9}\f$). Everywhere, \f$\psi\f$ is solved
+/// last from \f$\exp(\psi\tilde e_3) = R\,\exp(-\varphi\tilde e_1) \exp(-\vartheta\tilde
+/// e_2)\f$, so the angles reproduce \f$R\f$ to rounding even near the lock, where
+/// \f$\varphi\f$ from atan2 is ill-conditioned.
 template <class S>
 struct EulerZYXT {
   S yaw = S(0);    ///< \f$\psi\f$, about z
@@ -39,7 +42,7 @@ struct EulerZYXT {
     EulerZYXT e;
     const S cos_pitch = std::hypot(R(0, 0), R(1, 0));
     e.pitch = atan2(-R(2, 0), cos_pitch);
-    e.roll = cos_pitch < std::sqrt(eps<S>()) ? S(0) : atan2(R(2, 1), R(2, 2));
+    e.roll = cos_pitch < S(4) * eps<S>() ? S(0) : atan2(R(2, 1), R(2, 2));
     const Mat3<S> Rz =
         R * exp_so3<S>(-e.roll * Vec3<S>::UnitX()) * exp_so3<S>(-e.pitch * Vec3<S>::UnitY());
     e.yaw = atan2(Rz(1, 0), Rz(0, 0));

@@ -2,7 +2,9 @@
 /// Unit quaternions, vector part first (slides 18-20).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "soa/error.hpp"
 #include "soa/rotation/axis_angle.hpp"
@@ -25,8 +27,16 @@ class UnitQuaternionT {
   UnitQuaternionT(const Vec3<S>& q, S q0) : q_(q), q0_(q0) {
     require_finite(q, "UnitQuaternion: vector part");
     require_finite_scalar(q0, "UnitQuaternion: scalar part");
-    const S norm = std::sqrt(q.squaredNorm() + q0 * q0);
-    if (!(norm > S(0))) throw Error("UnitQuaternion: zero quaternion names no rotation");
+    S n2 = q.squaredNorm() + q0 * q0;
+    if (!(n2 >= std::numeric_limits<S>::min() / eps<S>() && n2 <= std::numeric_limits<S>::max())) {
+      // The sum of squares under- or overflows: scale by the largest coefficient first.
+      const S s = std::max(q.cwiseAbs().maxCoeff(), std::abs(q0));
+      if (!(s > S(0))) throw Error("UnitQuaternion: zero quaternion names no rotation");
+      q_ /= s;
+      q0_ /= s;
+      n2 = q_.squaredNorm() + q0_ * q0_;
+    }
+    const S norm = std::sqrt(n2);
     q_ /= norm;
     q0_ /= norm;
   }

@@ -1,0 +1,86 @@
+# The build step of `make docs` (cmake -P, run by the `docs` target after the lesson tour):
+#   1. copy the figures the tour drew (COURSE/NN-topic/*.png|svg) into FIGURES (IMAGE_PATH);
+#   2. run Doxygen on DOXYFILE into HTML (a fresh folder; any warning fails);
+#   3. copy the MathJax subset the pages need from MATHJAX into HTML/mathjax (links
+#      dereferenced, so the folder can be copied or served anywhere);
+#   4. check that no page loads anything from the network.
+# Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, MATHJAX.
+cmake_minimum_required(VERSION 3.25)
+foreach(var DOXYGEN DOXYFILE HTML COURSE FIGURES MATHJAX)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "docs.cmake: ${var} is not set")
+  endif()
+endforeach()
+
+# 1. Figures: one flat folder, so `\image html name.png` finds every lesson's figures.
+file(REMOVE_RECURSE "${FIGURES}")
+file(MAKE_DIRECTORY "${FIGURES}")
+file(GLOB figures "${COURSE}/[0-9][0-9]-*/*.png" "${COURSE}/[0-9][0-9]-*/*.svg")
+set(seen "")
+foreach(fig IN LISTS figures)
+  get_filename_component(name "${fig}" NAME)
+  if(name IN_LIST seen)
+    message(FATAL_ERROR "docs: two lessons wrote a figure named ${name} under ${COURSE}; "
+                        "figure names must be unique across lessons")
+  endif()
+  list(APPEND seen "${name}")
+  file(COPY_FILE "${fig}" "${FIGURES}/${name}")
+endforeach()
+
+# 2. Doxygen, on a clean output folder (no stale pages of removed lessons).
+if(NOT HTML MATCHES "/docs/html$")
+  message(FATAL_ERROR "docs: refusing to clean ${HTML} (expected a folder docs/html)")
+endif()
+file(REMOVE_RECURSE "${HTML}")
+get_filename_component(docs_dir "${HTML}" DIRECTORY)
+file(MAKE_DIRECTORY "${docs_dir}")  # Doxygen makes one missing level only
+execute_process(COMMAND "${DOXYGEN}" "${DOXYFILE}" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "docs: Doxygen failed (exit ${rc}); warnings are errors "
+                      "(WARN_AS_ERROR = FAIL_ON_WARNINGS): fix the warnings printed above")
+endif()
+if(NOT EXISTS "${HTML}/index.html")
+  message(FATAL_ERROR "docs: Doxygen wrote no ${HTML}/index.html")
+endif()
+
+# 3. MathJax 2 with SVG output: the loader, the extensions, the TeX input, the element jax,
+# and the SVG output with its TeX fonts (about 2.5 MB).
+set(mathjax_parts MathJax.js extensions jax/input jax/element jax/output/SVG/config.js
+                  jax/output/SVG/jax.js jax/output/SVG/autoload jax/output/SVG/fonts/TeX)
+foreach(part IN LISTS mathjax_parts)
+  set(src "${MATHJAX}/${part}")
+  if(IS_DIRECTORY "${src}")
+    file(GLOB_RECURSE files FOLLOW_SYMLINKS LIST_DIRECTORIES false RELATIVE "${MATHJAX}"
+         "${src}/*")
+  elseif(EXISTS "${src}")
+    set(files "${part}")
+  else()
+    message(FATAL_ERROR "docs: ${src} not found (Debian package libjs-mathjax)")
+  endif()
+  foreach(f IN LISTS files)
+    get_filename_component(dir "${HTML}/mathjax/${f}" DIRECTORY)
+    file(MAKE_DIRECTORY "${dir}")
+    file(COPY_FILE "${MATHJAX}/${f}" "${HTML}/mathjax/${f}")  # reads through symlinks
+  endforeach()
+endforeach()
+
+# 4. Offline: no script, style sheet, image or frame from the network (Doxygen's footer link
+# to doxygen.org is a link, not a load, and is allowed).
+file(GLOB_RECURSE pages "${HTML}/*.html")
+set(bad "")
+foreach(page IN LISTS pages)
+  file(STRINGS "${page}" hits
+       REGEX "<(script|link|img|iframe|object|embed|source)[^>]*(src|href|data)=\"(https?:)?//")
+  if(hits)
+    list(APPEND bad "${page}")
+  endif()
+endforeach()
+if(bad)
+  string(REPLACE ";" "\n  " bad "${bad}")
+  message(FATAL_ERROR "docs: these pages load resources from the network:\n  ${bad}")
+endif()
+
+list(LENGTH pages n_pages)
+list(LENGTH figures n_figures)
+message(STATUS "Course notes: ${n_pages} pages, ${n_figures} figures, offline math -> "
+               "${HTML}/index.html")

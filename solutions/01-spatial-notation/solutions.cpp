@@ -1,0 +1,71 @@
+// Lesson 1 exercises, solved (the statements are in exercises/01-spatial-notation/exercises.hpp).
+// Each is written from its slide's formula, as a student would, not by calling the library
+// function the exercise reproduces.
+#include <cmath>
+#include <string>
+
+#include "exercises.hpp"
+
+namespace soa::ex01 {
+
+// 1.1, slides 43 and 48-49: rotate both parts into x-coordinates, then
+// N(x) = N(y) + l(x,y) x F(y) and F(x) = F(y).
+Force apply_phi(const Phi& phi_xy, const Force& f_y) {
+  const Mat3<double>& R = phi_xy.R();
+  const Vec3<double> N_y = R * f_y.angular();  // N(y), x-coordinates
+  const Vec3<double> F = R * f_y.linear();     // F(y) = F(x), x-coordinates
+  const Vec3<double> N_x = N_y + tilde(phi_xy.l()) * F;
+  return Force(N_x, F);
+}
+
+// 1.2, slide 53: [x~ 0; y~ x~] [w; v] = [x~ w; y~ w + x~ v].
+Acceleration spatial_cross(const Velocity& X, const Velocity& Y) {
+  const Mat3<double> x = tilde<double>(X.angular()), y = tilde<double>(X.linear());
+  const Vec3<double> w = Y.angular(), v = Y.linear();
+  return Acceleration(x * w, y * w + x * v);
+}
+
+// 1.3, slides 66 and 70, through the centre of mass C:
+//   J(C) = J(y) + m p~(y) p~(y)           (slide 66 read backwards, y-coordinates)
+//   p(x) = l(x,y) + R p(y)                 (C is the same point; x-coordinates)
+//   J(x) = R J(C) R* - m p~(x) p~(x)      (rotate, then slide 66 at x)
+SpatialInertia parallel_axis(const Phi& phi_xy, const SpatialInertia& M_y) {
+  const double m = M_y.mass();
+  const Mat3<double>& R = phi_xy.R();
+  const Vec3<double> p_y = M_y.h() / m;
+  const Mat3<double> P_y = tilde(p_y);
+  const Mat3<double> J_C = M_y.J() + m * P_y * P_y;
+  const Vec3<double> p_x = phi_xy.l() + R * p_y;
+  const Mat3<double> P_x = tilde(p_x);
+  const Mat3<double> J_x = R * J_C * R.transpose() - m * P_x * P_x;
+  return SpatialInertia(m, m * p_x, J_x);
+}
+
+// 1.4, slide 19: [sin(theta/2) n; cos(theta/2)], n normalized; bad input refused.
+UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta) {
+  if (!n.allFinite() || !std::isfinite(theta))
+    throw Error("quaternion_from_axis_angle: axis or angle not finite");
+  const double length = n.norm();
+  if (!(length > 0.0)) throw Error("quaternion_from_axis_angle: zero axis names no rotation");
+  const Vec3<double> unit = n / length;
+  return UnitQuaternion(std::sin(theta / 2) * unit, std::cos(theta / 2));
+}
+
+// 1.5, slide 68: V* M V = w* J w + w* h~ v - v* h~ w + m v* v = w* J w + 2 w.(h x v) + m v.v,
+// since -v.(h x w) = w.(h x v).
+double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x) {
+  const Vec3<double> w = V_x.angular(), v = V_x.linear();
+  const Vec3<double>& h = M_x.h();
+  return 0.5 * w.dot(M_x.J() * w) + w.dot(h.cross(v)) + 0.5 * M_x.mass() * v.squaredNorm();
+}
+
+// 1.6, slides 36 and 46: in x-coordinates, w(y,x) = -w(x,y) and
+// v(y,x) = -v(x,y) + w(x,y) x l(x,y).
+Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy) {
+  const Mat3<double>& R = phi_xy.R();
+  const Vec3<double> w_xy = R * V_xy.angular();  // x-coordinates
+  const Vec3<double> v_xy = R * V_xy.linear();
+  return Velocity(-w_xy, -v_xy + w_xy.cross(phi_xy.l()));
+}
+
+}  // namespace soa::ex01
