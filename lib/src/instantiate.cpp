@@ -1,25 +1,36 @@
 // Explicit instantiations of the library's class templates in the three precisions the
 // course uses: a template that does not compile for float or long double fails here.
+#include "soa/chain.hpp"
 #include "soa/soa.hpp"
 
 namespace soa {
 
-#define SOA_INSTANTIATE(S)                           \
-  template class PoseT<S>;                           \
-  template class PhiT<S>;                            \
-  template class SpatialInertiaT<S>;                 \
-  template class UnitQuaternionT<S>;                 \
-  template struct AxisAngleT<S>;                     \
-  template struct GibbsT<S>;                         \
-  template struct CayleyT<S>;                        \
-  template struct EulerZYXT<S>;                      \
-  template class SpatialVector<S, VelocityKind>;     \
-  template class SpatialVector<S, AccelerationKind>; \
-  template class SpatialVector<S, ForceKind>;        \
-  template class SpatialVector<S, MomentumKind>;     \
-  template Vec3<S> log_so3<S>(const Mat3<S>&);       \
-  template Mat3<S> exp_so3<S>(const Vec3<S>&);       \
-  template FreeBodyStateT<S> rk4_step<S>(const SpatialInertiaT<S>&, const FreeBodyStateT<S>&, S);
+#define SOA_INSTANTIATE(S)                                                                        \
+  template class PoseT<S>;                                                                        \
+  template class PhiT<S>;                                                                         \
+  template class SpatialInertiaT<S>;                                                              \
+  template class UnitQuaternionT<S>;                                                              \
+  template struct AxisAngleT<S>;                                                                  \
+  template struct GibbsT<S>;                                                                      \
+  template struct CayleyT<S>;                                                                     \
+  template struct EulerZYXT<S>;                                                                   \
+  template class SpatialVector<S, VelocityKind>;                                                  \
+  template class SpatialVector<S, AccelerationKind>;                                              \
+  template class SpatialVector<S, ForceKind>;                                                     \
+  template class SpatialVector<S, MomentumKind>;                                                  \
+  template Vec3<S> log_so3<S>(const Mat3<S>&);                                                    \
+  template Mat3<S> exp_so3<S>(const Vec3<S>&);                                                    \
+  template FreeBodyStateT<S> rk4_step<S>(const SpatialInertiaT<S>&, const FreeBodyStateT<S>&, S); \
+  template struct HingeT<S>;                                                                      \
+  template class ModelT<S>;                                                                       \
+  template struct WorkspaceT<S>;                                                                  \
+  template struct OperatorsT<S>;                                                                  \
+  template void inverse_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,           \
+                                    const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);          \
+  template void jacobian<S>(const ModelT<S>&, const VecX<S>&, const WorkspaceT<S>&, int,          \
+                            const PoseT<S>&, Eigen::Matrix<S, 6, Eigen::Dynamic>&);               \
+  template AccelerationT<S> jacobian_dot_times_beta<S>(const ModelT<S>&, const StateT<S>&,        \
+                                                       WorkspaceT<S>&, int, const PoseT<S>&);
 
 SOA_INSTANTIATE(float)
 SOA_INSTANTIATE(double)

@@ -22,6 +22,11 @@ template <class S>
 using Mat6 = Eigen::Matrix<S, 6, 6>;
 template <class S>
 using Mat4 = Eigen::Matrix<S, 4, 4>;
+/// Stacked quantities of a chain (\f$\theta\f$, \f$\beta\f$, \f$T\f$) and dense operators.
+template <class S>
+using VecX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+template <class S>
+using MatX = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
 
 /// Machine epsilon of the scalar, the unit in which test tolerances are written.
 template <class S>

@@ -1,0 +1,12 @@
+/// \file
+/// Serial chains (lessons 3-4): model, state, workspace, kinematics, inverse dynamics and the
+/// operator forms.
+#pragma once
+
+#include "soa/chain/hinge.hpp"
+#include "soa/chain/inverse_dynamics.hpp"
+#include "soa/chain/jacobian.hpp"
+#include "soa/chain/kinematics.hpp"
+#include "soa/chain/model.hpp"
+#include "soa/chain/operators.hpp"
+#include "soa/chain/workspace.hpp"
