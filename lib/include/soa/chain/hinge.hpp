@@ -97,13 +97,13 @@ struct HingeT {
   PoseT<S> transform(const S* theta) const {
     switch (type) {
       case HingeType::Revolute:
-        return PoseT<S>(exp_so3<S>(theta[0] * axis), Vec3<S>::Zero());
+        return PoseT<S>(exp_unit_axis<S>(axis, theta[0]), Vec3<S>::Zero());
       case HingeType::Prismatic:
         return PoseT<S>(Mat3<S>::Identity(), theta[0] * axis);
       case HingeType::Helical:
-        return PoseT<S>(exp_so3<S>(theta[0] * axis), (pitch * theta[0]) * axis);
+        return PoseT<S>(exp_unit_axis<S>(axis, theta[0]), (pitch * theta[0]) * axis);
       case HingeType::Universal:
-        return PoseT<S>(exp_so3<S>(theta[0] * axis) * exp_so3<S>(theta[1] * axis2),
+        return PoseT<S>(exp_unit_axis<S>(axis, theta[0]) * exp_unit_axis<S>(axis2, theta[1]),
                         Vec3<S>::Zero());
       case HingeType::Spherical:
         return PoseT<S>(quaternion(theta).matrix(), Vec3<S>::Zero());
@@ -232,7 +232,7 @@ struct HingeT {
   }
 
   /// The universal hinge's first axis seen in \f$O_k\f$: \f$e^{-\theta_2\tilde a_2} a_1\f$.
-  Vec3<S> universal_c1(const S* theta) const { return exp_so3<S>(-theta[1] * axis2) * axis; }
+  Vec3<S> universal_c1(const S* theta) const { return exp_unit_axis<S>(axis2, -theta[1]) * axis; }
 
   template <class T>
   HingeT<T> cast() const {

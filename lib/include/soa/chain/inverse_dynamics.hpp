@@ -50,11 +50,37 @@ using ExternalForces = std::vector<ForceT<S>>;
 template <class S>
 void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& beta_dot,
                       const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, VecX<S>& T) {
-  update_phi(m, x.theta, ws);
-  update_velocities(m, x, ws);
-  update_accelerations(m, x, beta_dot.data(),
-                       m.has_gravity() ? gravity_base_acceleration(m) : AccelerationT<S>(), ws);
   const bool moving = !x.beta.isZero(0);
+  // Base to tip, in one pass: phi(k+1,k), V(k), a(k), alpha(k) (the scatter recursions of
+  // update_phi(), update_velocities() and update_accelerations(), fused).
+  VelocityT<S> V_parent;
+  AccelerationT<S> alpha_parent =
+      m.has_gravity() ? gravity_base_acceleration(m) : AccelerationT<S>();
+  for (int k = m.n(); k >= 1; --k) {
+    const BodyT<S>& B = m.body(k);
+    const S* th = x.theta.data() + B.q_offset;
+    ws.phi[k - 1] = PhiT<S>(B.placement * B.hinge.transform(th));
+    const PhiT<S>& phi = ws.phi[k - 1];
+    AccelerationT<S> alpha = phi.transpose_apply(alpha_parent);
+    alpha += AccelerationT<S>(B.hinge.H_star_times(th, beta_dot.data() + B.v_offset).vector());
+    if (moving) {
+      const S* be = x.beta.data() + B.v_offset;
+      const VelocityT<S> dV = B.hinge.H_star_times(th, be);
+      const VelocityT<S> V = phi.transpose_apply(V_parent) + dV;
+      const AccelerationT<S> a =
+          coriolis_term(phi, V_parent, V, dV, B.hinge.H_star_dot_times(th, be));
+      alpha += a;
+      ws.V[k - 1] = V;
+      ws.a[k - 1] = a;
+      V_parent = V;
+    } else {
+      ws.V[k - 1] = VelocityT<S>();
+      ws.a[k - 1] = AccelerationT<S>();
+    }
+    ws.alpha[k - 1] = alpha;
+    alpha_parent = alpha;
+  }
+  // Tip to base: the gather recursion for f(k) and T(k).
   for (int k = 1; k <= m.n(); ++k) {
     const BodyT<S>& B = m.body(k);
     ForceT<S> f = B.M * ws.alpha[k - 1];

@@ -22,6 +22,30 @@ Mat3<S> exp_so3(const Vec3<S>& w) {
   return Mat3<S>::Identity() + sinc(theta) * W + (half_sinc * half_sinc / S(2)) * W * W;
 }
 
+/// \f$\exp(\theta\tilde n)\f$ for a unit axis \f$n\f$ (slide 19):
+/// \f$\cos\theta\, I + (1-\cos\theta)\, n n^* + \sin\theta\, \tilde n\f$ — the
+/// hinge rotation of the chain recursions, cheaper than exp_so3() when the axis is known to
+/// be of unit length.
+template <class S>
+Mat3<S> exp_unit_axis(const Vec3<S>& n, S theta) {
+  using std::cos;
+  using std::sin;
+  const S c = cos(theta), s = sin(theta), t = S(1) - c;
+  const S xy = t * n.x() * n.y(), xz = t * n.x() * n.z(), yz = t * n.y() * n.z();
+  const S sx = s * n.x(), sy = s * n.y(), sz = s * n.z();
+  Mat3<S> R;
+  R(0, 0) = c + t * n.x() * n.x();
+  R(1, 1) = c + t * n.y() * n.y();
+  R(2, 2) = c + t * n.z() * n.z();
+  R(0, 1) = xy - sz;
+  R(1, 0) = xy + sz;
+  R(0, 2) = xz + sy;
+  R(2, 0) = xz - sy;
+  R(1, 2) = yz - sx;
+  R(2, 1) = yz + sx;
+  return R;
+}
+
 /// The logarithm: the rotation vector \f$w = \theta n\f$, \f$\theta \in [0, \pi]\f$, with
 /// \f$\exp(\tilde w) = R\f$.
 ///
