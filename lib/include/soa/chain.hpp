@@ -3,6 +3,8 @@
 /// operator forms.
 #pragma once
 
+#include "soa/chain/articulated.hpp"
+#include "soa/chain/composite.hpp"
 #include "soa/chain/hinge.hpp"
 #include "soa/chain/inverse_dynamics.hpp"
 #include "soa/chain/jacobian.hpp"

@@ -1,5 +1,8 @@
-// Explicit instantiations of the library's class templates in the three precisions the
-// course uses: a template that does not compile for float or long double fails here.
+// Explicit instantiations of the library's templates in the three precisions the course
+// uses: a template that does not compile for float or long double fails here. One file per
+// precision, so that the three compile in parallel.
+#pragma once
+
 #include "soa/chain.hpp"
 #include "soa/soa.hpp"
 
@@ -29,13 +32,12 @@ namespace soa {
                                     const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);          \
   template void jacobian<S>(const ModelT<S>&, const VecX<S>&, const WorkspaceT<S>&, int,          \
                             const PoseT<S>&, Eigen::Matrix<S, 6, Eigen::Dynamic>&);               \
+  template struct ArticulatedT<S>;                                                                \
+  template void articulated_inertias<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&, \
+                                        ArticulatedT<S>&);                                        \
+  template void mass_matrix_crb<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&,      \
+                                   std::vector<SpatialInertiaT<S>>&, MatX<S>&);                   \
   template AccelerationT<S> jacobian_dot_times_beta<S>(const ModelT<S>&, const StateT<S>&,        \
                                                        WorkspaceT<S>&, int, const PoseT<S>&);
-
-SOA_INSTANTIATE(float)
-SOA_INSTANTIATE(double)
-SOA_INSTANTIATE(long double)
-
-#undef SOA_INSTANTIATE
 
 }  // namespace soa

@@ -1,0 +1,6 @@
+// The library's templates instantiated in double (see instantiate.hpp).
+#include "instantiate.hpp"
+
+namespace soa {
+SOA_INSTANTIATE(double)
+}  // namespace soa

@@ -1,0 +1,6 @@
+// The library's templates instantiated in float (see instantiate.hpp).
+#include "instantiate.hpp"
+
+namespace soa {
+SOA_INSTANTIATE(float)
+}  // namespace soa

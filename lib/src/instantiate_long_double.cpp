@@ -1,0 +1,6 @@
+// The library's templates instantiated in long double (see instantiate.hpp).
+#include "instantiate.hpp"
+
+namespace soa {
+SOA_INSTANTIATE(long double)
+}  // namespace soa
