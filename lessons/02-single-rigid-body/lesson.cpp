@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "checklist.hpp"
+#include "plot.hpp"
 #include "soa/soa.hpp"
 
 using soa::Acceleration;
@@ -142,18 +143,6 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& e) 
     sx += X, sy += Y, sxx += X * X, sxy += X * Y;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
-/// Runs gnuplot on a script kept beside this program, with the output directory passed as
-/// `outdir`. The figure counts as written when gnuplot exits with 0 and the PNG is not empty.
-bool plot(const std::string& script, const std::filesystem::path& out, const std::string& png) {
-  const std::filesystem::path file = out / png;
-  std::error_code ec;
-  std::filesystem::remove(file, ec);
-  const std::string command = "gnuplot -e \"outdir='" + out.string() + "'\" '" +
-                              std::string(SOA_LESSON_SOURCE_DIR) + "/" + script + "'";
-  const int rc = std::system(command.c_str());
-  return rc == 0 && std::filesystem::exists(file) && std::filesystem::file_size(file, ec) > 0;
 }
 
 int main(int argc, char** argv) {
@@ -508,21 +497,21 @@ int main(int argc, char** argv) {
 
   /// ## 9. Figures
   ///
-  /// `energy_error.csv`: the relative energy error \f$(E(t) - E(0))/E(0)\f$ of the x run for
-  /// each step size, sampled every 0.04 s; `energy_error.png` plots its magnitude on a log
+  /// `l2_energy_error.csv`: the relative energy error \f$(E(t) - E(0))/E(0)\f$ of the x run for
+  /// each step size, sampled every 0.04 s; `l2_energy_error.png` plots its magnitude on a log
   /// scale: a staircase that steps up at each flip, with a spike during the flip, the curves
   /// some 20-30 times apart.
   ///
-  /// \image html energy_error.png "Energy error of the Lie-group RK4, body about x" width=600px
+  /// \image html l2_energy_error.png "Energy error of the Lie-group RK4, body about x" width=600px
   ///
-  /// `flip.csv` and `flip.png`: the body-frame components of \f$\omega\f$ for h = 0.005 s;
+  /// `l2_flip.csv` and `l2_flip.png`: the body-frame components of \f$\omega\f$ for h = 0.005 s;
   /// \f$\omega_2\f$ switches between \f$+\Omega\f$ and \f$-\Omega\f$ while \f$\omega_1\f$ and
   /// \f$\omega_3\f$ peak during each flip.
   ///
-  /// \image html flip.png "The Dzhanibekov flip: body-frame angular velocity" width=600px
+  /// \image html l2_flip.png "The Dzhanibekov flip: body-frame angular velocity" width=600px
   checks.section("9. Figures");
   {
-    std::ofstream csv(out / "energy_error.csv");
+    std::ofstream csv(out / "l2_energy_error.csv");
     csv << "t";
     for (const double h : hs) csv << ",h = " << h << " s";
     csv << "\n";
@@ -539,10 +528,10 @@ int main(int argc, char** argv) {
       }
       csv << "\n";
     }
-    checks.check("energy_error.csv written", bool(csv));
+    checks.check("l2_energy_error.csv written", bool(csv));
   }
   {
-    std::ofstream csv(out / "flip.csv");
+    std::ofstream csv(out / "l2_flip.csv");
     csv << "t,w1,w2,w3\n";
     for (std::size_t k = 0; k < run_x.x.size(); k += 2) {
       const Vec3 wk = run_x.x[k].V.angular();
@@ -550,11 +539,11 @@ int main(int argc, char** argv) {
       std::snprintf(line, sizeof line, "%.3f,%.6f,%.6f,%.6f\n", run_x.t(k), wk[0], wk[1], wk[2]);
       csv << line;
     }
-    checks.check("flip.csv written", bool(csv));
+    checks.check("l2_flip.csv written", bool(csv));
   }
-  checks.check("figure written: energy_error.png",
-               plot("energy_error.gp", out, "energy_error.png"));
-  checks.check("figure written: flip.png", plot("flip.gp", out, "flip.png"));
+  checks.check("figure written: l2_energy_error.png",
+               soa::lesson::plot("energy_error.gp", out, "l2_energy_error.png"));
+  checks.check("figure written: l2_flip.png", soa::lesson::plot("flip.gp", out, "l2_flip.png"));
 
   return checks.finish();
 }

@@ -22,12 +22,27 @@ struct Scene {
   std::string name;  ///< the file name as given (used in messages)
   Model model;
   State state;  ///< initial state (the neutral configuration at rest when the file has none)
-  VecX<double> beta_dot;         ///< \f$\dot\beta\f$ for inverse dynamics (zero when absent)
-  ExternalForces<double> f_ext;  ///< empty when the scene applies none
+  VecX<double> beta_dot;             ///< \f$\dot\beta\f$ for inverse dynamics (zero when absent)
+  ExternalForces<double> f_ext;      ///< empty when the scene applies none
   std::vector<std::string> compute;  ///< what the scene asks to compute (may be empty)
   /// The bodies in the order of the file (base first), as course numbers k: the order of
   /// `--q/--qd/--qdd` on the command line and of per-body output.
   std::vector<int> file_order;
+
+  // Added with the reader:
+  std::string title;  ///< the scene's own "name" in the file (the file's stem when absent)
+
+  /// A body of the file seen by the model. A body on a locked hinge is merged into its
+  /// inboard neighbour (ModelT::from_base_first) and rides on it: its frame is fixed on body
+  /// k at `offset` \f$= {}^{O_k}T_{F}\f$ (the identity for a body that keeps its hinge).
+  struct Frame {
+    std::string name;
+    int k = 0;            ///< the course number of the model body it is fixed on
+    Pose offset;          ///< \f${}^{O_k}T_F\f$
+    bool locked = false;  ///< merged through a locked hinge (no coordinates of its own)
+  };
+  /// Every body of the file, in the order of the file, locked ones included.
+  std::vector<Frame> frames;
 };
 
 /// Reads and checks a scene file. Throws soa::Error("<file>: <json path>: <problem>").
@@ -35,5 +50,19 @@ Scene load_scene(const std::string& path);
 
 /// The same from JSON text; \p name stands for the file in messages.
 Scene parse_scene(const std::string& json_text, const std::string& name);
+
+/// File order of the coordinates: entry i is where the i-th value of `--q` (bodies in file
+/// order, base first, each hinge's coordinates in turn) sits in the model's \f$\theta\f$
+/// (tip first).
+std::vector<int> file_q_index(const Scene& scene);
+/// The same for \f$\beta\f$, \f$\dot\beta\f$ and \f$T\f$ (`--qd`, `--qdd`).
+std::vector<int> file_v_index(const Scene& scene);
+
+/// \f$\theta\f$ from values in file order. Throws soa::Error("<problem>") for a wrong count,
+/// a value that is not finite, or a quaternion (spherical, free hinges) whose norm is not 1
+/// within 1e-6; quaternions are then normalized.
+VecX<double> theta_from_file_order(const Scene& scene, const std::vector<double>& q);
+/// \f$\beta\f$ (or \f$\dot\beta\f$) from values in file order; the same checks.
+VecX<double> beta_from_file_order(const Scene& scene, const std::vector<double>& v);
 
 }  // namespace soa

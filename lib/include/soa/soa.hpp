@@ -1,7 +1,9 @@
 /// \file
-/// Everything in the `soa` library.
+/// Everything in the `soa` library (scene files, which need nlohmann-json, are apart:
+/// soa/scene.hpp, library soa_scene).
 #pragma once
 
+#include "soa/chain.hpp"
 #include "soa/coriolis.hpp"
 #include "soa/error.hpp"
 #include "soa/free_body.hpp"

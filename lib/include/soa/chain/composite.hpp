@@ -41,7 +41,7 @@ void mass_matrix_crb(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>
       for (int i = j; i <= m.n(); ++i) {
         if (i > j) F = ws.phi[i - 2].apply(F);  // phi(i, i-1)
         const BodyT<S>& Bi = m.body(i);
-        S T[6];
+        S T[6] = {};
         Bi.hinge.H_times(x.theta.data() + Bi.q_offset, F, T);
         for (int r = 0; r < Bi.hinge.nv(); ++r) {
           Mass(Bi.v_offset + r, col) = T[r];

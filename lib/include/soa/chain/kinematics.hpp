@@ -32,8 +32,10 @@ void update_poses(const ModelT<S>& m, WorkspaceT<S>& ws) {
 ///     \begin{pmatrix} 0 \\ \omega_k \times v_k - R^*(\omega_{k+1} \times v_{k+1})
 ///     \end{pmatrix}, \f]
 /// \f$R = {}^{k+1}R_k\f$; equal to the coordinate-free
-/// \f$[\omega_{k+1}\times\Delta_\omega;\ \omega_{k+1}\times\Delta_v + \omega_{k+1}\times
-/// (v(k) - v(k+1))] + \mathring H^*\beta\f$.
+/// \f$[\omega_{k+1}\times\Delta_\omega;\ \omega_k\times\Delta_v + \omega_{k+1}\times
+/// (v(k) - v(k+1))] + \mathring H^*\beta\f$, where \f$\omega_k\times\Delta_v =
+/// \omega_{k+1}\times\Delta_v + \Delta_\omega\times\Delta_v\f$ and the last term is non-zero
+/// only for free hinges (\f$\mathring H^*\f$ is the rate seen from \f$O_k\f$).
 template <class S>
 AccelerationT<S> coriolis_term(const PhiT<S>& phi, const VelocityT<S>& V_parent,
                                const VelocityT<S>& V, const VelocityT<S>& dV,

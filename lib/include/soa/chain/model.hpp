@@ -33,7 +33,7 @@ struct BodyT {
 };
 
 /// A serial chain: bodies stored tip first, `body(k)` for k = 1 (tip) ... n (next to the
-/// base), as the course numbers them. Built by ChainBuilderT from the base out.
+/// base), as the course numbers them. Built by from_base_first() from the base out.
 template <class S>
 class ModelT {
  public:

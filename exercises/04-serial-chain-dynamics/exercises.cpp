@@ -1,0 +1,39 @@
+// Lesson 4 exercises: replace each body with your code (statements in exercises.hpp).
+#include "exercises.hpp"
+
+#include "not_done.hpp"
+
+namespace soa::ex04 {
+
+Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vector<Phi>& phi,
+                       const std::vector<Acceleration>& alpha, const std::vector<Force>& b) {
+  (void)m, (void)theta, (void)phi, (void)alpha, (void)b;
+  throw exercise::NotDone("4.1 gather_forces");
+}
+
+VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& beta_dot) {
+  (void)m, (void)x, (void)beta_dot;
+  throw exercise::NotDone("4.2 newton_euler");
+}
+
+MatX<double> mass_matrix_operators(const Operators& op) {
+  (void)op;
+  throw exercise::NotDone("4.3 mass_matrix_operators");
+}
+
+MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta) {
+  (void)m, (void)theta;
+  throw exercise::NotDone("4.4 mass_matrix_columns");
+}
+
+VecX<double> bias_operators(const Operators& op) {
+  (void)op;
+  throw exercise::NotDone("4.5 bias_operators");
+}
+
+VecX<double> gravity_torques(const Model& m, const VecX<double>& theta) {
+  (void)m, (void)theta;
+  throw exercise::NotDone("4.6 gravity_torques");
+}
+
+}  // namespace soa::ex04

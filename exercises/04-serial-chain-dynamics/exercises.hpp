@@ -1,0 +1,117 @@
+/// \file
+/// Lesson 4 exercises: the equations of motion of a serial chain, by the Newton–Euler
+/// recursions and with spatial operators, \f$T = \mathcal M\dot\beta + \mathcal C\f$.
+///
+/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base (the inertial
+/// frame is body n+1); hinge k joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$ and
+/// \f$T\f$ are stacked tip first (body k's entries start at `m.body(k).q_offset` and
+/// `m.body(k).v_offset`). Spatial vectors are angular part first; body k's quantities are at
+/// its hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates. `ws.phi[k-1]` (or `phi[k-1]`) is
+/// \f$\phi(k+1,k)\f$: `.apply(f)` is \f$\phi(k+1,k)\,f\f$ (forces, outward to inward) and
+/// `.transpose_apply(V)` is \f$\phi^*(k+1,k)\,V\f$ (velocities, inward to outward).
+/// Stacked 6n-vectors and the dense operators of soa::OperatorsT put body k at rows
+/// \f$6(k-1) \dots 6k-1\f$.
+///
+/// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
+/// and run `make exercises`. Do not call the library function an exercise reproduces (named
+/// in its statement); the other library functions are yours to use.
+#pragma once
+
+#include <vector>
+
+#include "soa/chain.hpp"
+#include "soa/soa.hpp"
+
+namespace soa::ex04 {
+
+/// The result of exercise 4.1: the inter-body forces and the hinge forces.
+struct Gathered {
+  std::vector<Force> f;  ///< \f$f(k)\f$ at entry k−1, the force on body k through hinge k
+  VecX<double> T;        ///< \f$T\f$, size nv, tip first
+};
+
+/// **Exercise 4.1: the gather recursion.**
+/// The scatter sweep of lesson 3 has already given, for each body k, \f$\phi(k+1,k)\f$
+/// (\p phi, entry k−1) and the spatial acceleration \f$\alpha(k)\f$ (\p alpha); \p b holds
+/// \f$b(k)\f$, the gyroscopic term less any external force. Return, tip to base
+/// (lesson 4, section 1),
+/// \f[ f(k) = \phi(k,k-1)\, f(k-1) + M(k)\,\alpha(k) + b(k), \quad f(0) = 0, \qquad
+///     T(k) = H(k)\, f(k), \f]
+/// with \f$M(k)\f$ = `m.body(k).M` and \f$H(k)\f$ applied by
+/// `m.body(k).hinge.H_times(theta + q_offset, f, T + v_offset)` (the hinge map may depend on
+/// \p theta). Mind the index: \f$\phi(k,k-1)\f$ is `phi[k-2]`. Reproduces the tip-to-base
+/// sweep of soa::inverse_dynamics (which you must not call).
+Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vector<Phi>& phi,
+                       const std::vector<Acceleration>& alpha, const std::vector<Force>& b);
+
+/// **Exercise 4.2: Newton–Euler inverse dynamics of a revolute chain.**
+/// Every hinge of \p m is revolute about the unit axis \f$a_k\f$ = `m.body(k).hinge.axis`
+/// (so \f$H^*(k) = [a_k; 0]\f$ and \f$\theta(k)\f$, \f$\beta(k)\f$ are scalars); no springs,
+/// no external forces; gravity `m.gravity` (possibly zero). Return the hinge forces \f$T\f$
+/// that give the chain at the state \p x the accelerations \p beta_dot, in two sweeps
+/// (lesson 4, sections 1 and 5):
+/// 1. base to tip, k = n ... 1, from \f$V(n+1) = 0\f$ and \f$\alpha(n+1) = [0; -g]\f$:
+///    \f$\phi(k+1,k)\f$ = `Phi(B.placement * Pose(exp_so3(theta_k * a_k), 0))`, whose
+///    `R()` and `l()` are \f$R = {}^{k+1}R_k\f$ and \f$\ell = {}^{k+1}l(O_{k+1}, O_k)\f$;
+///    \f[ V(k) = \phi^*(k+1,k)\, V(k+1) + [\beta_k a_k; 0], \qquad
+///        \alpha(k) = \phi^*(k+1,k)\, \alpha(k+1) + [\dot\beta_k a_k; 0] + a(k), \f]
+///    where the Coriolis term of a revolute hinge is, with \f$\omega' = R^*\omega(k+1)\f$
+///    the angular velocity of body k+1 and \f$l = R^*\ell\f$, both in \f$O_k\f$ coordinates,
+///    \f[ a(k) = \begin{pmatrix} \omega' \times \beta_k a_k
+///        \\ \omega' \times (\omega' \times l) \end{pmatrix} ; \f]
+/// 2. tip to base: \f$f(k) = \phi(k,k-1)\, f(k-1) + M(k)\,\alpha(k) + b(k)\f$ with the
+///    gyroscopic term \f$b(k)\f$ of lesson 2 (soa::gyroscopic_force), and
+///    \f$T(k) = a_k^*\, N(k)\f$, the moment of \f$f(k) = [N(k); F(k)]\f$ about the axis.
+///
+/// Do not call soa::inverse_dynamics, soa::update_velocities, soa::update_accelerations or
+/// soa::OperatorsT.
+VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& beta_dot);
+
+/// **Exercise 4.3: the mass matrix from the operators.**
+/// \p op holds the dense operators of a chain at one state (soa::OperatorsT): the shift
+/// operator `op.E_phi` \f$= \mathcal E_\phi\f$, `op.H` \f$= H\f$ (nv x 6n) and `op.M`
+/// \f$= M\f$ (6n x 6n). Its `op.phi` is **not** given (the tests set it to zero). Compute
+/// \f$\phi = (I - \mathcal E_\phi)^{-1}\f$ (solve, or use \f$\phi(i,j) = \phi(i,i-1)\,
+/// \phi(i-1,j)\f$ block by block) and return the Newton–Euler factorization of the mass
+/// matrix (lesson 4, section 3)
+/// \f[ \mathcal M = H\phi\, M\, \phi^* H^* . \f]
+/// Do not call `op.mass_matrix()`.
+MatX<double> mass_matrix_operators(const Operators& op);
+
+/// **Exercise 4.4: the mass matrix, column by column, from inverse dynamics.**
+/// With \f$T = \mathcal M(\theta)\dot\beta + \mathcal C(\theta,\beta)\f$, column j of
+/// \f$\mathcal M\f$ is \f$T(\dot\beta = e_j) - T(\dot\beta = 0)\f$ at any \f$\beta\f$ (take
+/// \f$\beta = 0\f$): the difference removes gravity, springs and everything else in
+/// \f$\mathcal C\f$ (lesson 4, section 3). Return \f$\mathcal M(\theta)\f$ for the chain
+/// \p m (any hinge types, gravity and springs possible) at the configuration \p theta, with
+/// nv + 1 calls of soa::inverse_dynamics. Do not use soa::OperatorsT. (soa::inverse_dynamics
+/// is a template: pass it `VecX<double>` and `ExternalForces<double>` variables, not Eigen
+/// expressions such as `VecX<double>::Zero(n)` or `{}`, or name the scalar,
+/// `soa::inverse_dynamics<double>(...)`.)
+MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta);
+
+/// **Exercise 4.5: the bias from the operators.**
+/// As in 4.3, \p op holds \f$\mathcal E_\phi\f$, \f$H\f$ and \f$M\f$ (`op.phi` zeroed), and
+/// also the stacked Coriolis terms `op.a` \f$= a\f$ (with gravity folded into the block of
+/// body n: \f$a(n) \mathrel{+}= \phi^*(n+1,n)\,[0; -g]\f$) and `op.b` \f$= b\f$ (gyroscopic
+/// terms less the external forces). Return (lesson 4, section 3)
+/// \f[ \mathcal C = H\phi\,(M\phi^* a + b), \f]
+/// the hinge forces at \f$\dot\beta = 0\f$. Do not call `op.bias()`, `op.T()`, `op.f()` or
+/// `op.alpha()`.
+VecX<double> bias_operators(const Operators& op);
+
+/// **Exercise 4.6: gravity torques from the Jacobians of the centres of mass.**
+/// Gravity pulls body k with the force \f$m_k g\f$ at its centre of mass \f$C_k\f$
+/// (\f$g\f$ = `m.gravity`, inertial coordinates). An external force \f$f_F\f$ at a frame F
+/// costs the hinge forces \f$-J^*(F)\, f_F\f$ (lesson 4, section 6), so the hinge forces that
+/// hold the chain still at \p theta are
+/// \f[ \mathcal G(\theta) = -\sum_k J^*(C_k) \begin{pmatrix} 0 \\ m_k\, {}^{C_k}g
+///     \end{pmatrix} , \f]
+/// with \f$J(C_k)\f$ the 6 x nv Jacobian of the frame at \f$C_k\f$ with the axes of
+/// \f$O_k\f$ (`soa::jacobian(m, theta, ws, k, Pose(I, p_k), J)`, \f$p_k\f$ =
+/// `m.body(k).M.p()`, after `soa::update_phi` and `soa::update_poses`) and
+/// \f${}^{C_k}g = R_k^*\, g\f$, \f$R_k\f$ = `ws.pose[k-1].R()`. The chain has no springs.
+/// Do not call soa::inverse_dynamics or soa::OperatorsT.
+VecX<double> gravity_torques(const Model& m, const VecX<double>& theta);
+
+}  // namespace soa::ex04

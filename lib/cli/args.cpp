@@ -1,0 +1,128 @@
+// The command line of `soa`: verb, scene file and options.
+#include "args.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "soa/error.hpp"
+
+namespace soa::cli {
+namespace {
+
+struct VerbInfo {
+  Verb verb;
+  const char* name;
+  const char* options;  // the options the verb takes, as the help shows them
+};
+constexpr VerbInfo kVerbs[] = {
+    {Verb::Kinematics, "kinematics", "--q, --qd, --qdd, --body"},
+    {Verb::Jacobian, "jacobian", "--q, --body"},
+    {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd"},
+    {Verb::MassMatrix, "mass-matrix", "--q"},
+};
+
+bool takes(Verb v, const std::string& option) {
+  switch (v) {
+    case Verb::Kinematics:
+      return true;
+    case Verb::Jacobian:
+      return option == "--q" || option == "--body";
+    case Verb::InverseDynamics:
+      return option != "--body";
+    case Verb::MassMatrix:
+      return option == "--q";
+  }
+  return false;
+}
+
+std::string trim(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+}  // namespace
+
+const char* verb_name(Verb v) {
+  for (const VerbInfo& i : kVerbs)
+    if (i.verb == v) return i.name;
+  return "?";
+}
+
+Args parse_args(const std::vector<std::string>& argv) {
+  Args a;
+  if (argv.empty()) throw UsageError("missing the verb");
+  if (argv[0] == "--help" || argv[0] == "-h") {
+    a.help = true;
+    return a;
+  }
+  for (const VerbInfo& i : kVerbs)
+    if (argv[0] == i.name) a.verb = i.verb;
+  if (!a.verb) {
+    if (!argv[0].empty() && argv[0][0] == '-')
+      throw UsageError("expected a verb before \"" + argv[0] + "\"");
+    throw UsageError("unknown verb \"" + argv[0] +
+                     "\" (kinematics, jacobian, inverse-dynamics or mass-matrix)");
+  }
+  const Verb v = *a.verb;
+  const std::string verb = verb_name(v);
+  for (std::size_t i = 1; i < argv.size(); ++i) {
+    const std::string& arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      a.help = true;
+      return a;
+    }
+    if (arg.size() > 1 && arg[0] == '-') {
+      const std::size_t eq = arg.find('=');
+      const std::string option = arg.substr(0, eq);
+      std::optional<std::string>* slot = option == "--q"      ? &a.q
+                                         : option == "--qd"   ? &a.qd
+                                         : option == "--qdd"  ? &a.qdd
+                                         : option == "--body" ? &a.body
+                                                              : nullptr;
+      if (!slot) throw UsageError("unknown option \"" + option + "\"");
+      if (!takes(v, option)) {
+        std::string options;
+        for (const VerbInfo& info : kVerbs)
+          if (info.verb == v) options = info.options;
+        throw UsageError(verb + " does not take " + option + " (it takes " + options + ")");
+      }
+      if (*slot) throw UsageError(option + " given twice");
+      if (eq != std::string::npos) {
+        *slot = arg.substr(eq + 1);
+      } else {
+        if (i + 1 == argv.size()) throw UsageError(option + " needs a value");
+        *slot = argv[++i];
+      }
+      continue;
+    }
+    if (!a.scene.empty())
+      throw UsageError("unexpected argument \"" + arg + "\" (" + verb + " takes one scene file)");
+    a.scene = arg;
+  }
+  if (a.scene.empty()) throw UsageError(verb + ": missing the scene file");
+  return a;
+}
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& option) {
+  std::vector<double> x;
+  if (trim(text).empty()) return x;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = trim(text.substr(start, comma - start));
+    const std::string where = option + ": entry " + std::to_string(x.size());
+    if (item.empty()) throw Error(where + " is empty");
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (end != item.c_str() + item.size())
+      throw Error(where + ": \"" + item + "\" is not a number");
+    if (!std::isfinite(value)) throw Error(where + ": \"" + item + "\" is not a finite number");
+    x.push_back(value);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return x;
+}
+
+}  // namespace soa::cli

@@ -1,0 +1,35 @@
+// The command line of `soa`: verb, scene file and options (see help.cpp for the text).
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace soa::cli {
+
+/// A command line `soa` cannot run: exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class Verb { Kinematics, Jacobian, InverseDynamics, MassMatrix };
+
+/// "kinematics", "jacobian", "inverse-dynamics", "mass-matrix".
+const char* verb_name(Verb v);
+
+struct Args {
+  bool help = false;         ///< --help or -h: print the help of the verb (or of soa)
+  std::optional<Verb> verb;  ///< absent only with a top-level --help
+  std::string scene;         ///< the scene file
+  std::optional<std::string> q, qd, qdd, body;  ///< option values as given
+};
+
+/// Parses the arguments after the program name; throws UsageError.
+Args parse_args(const std::vector<std::string>& argv);
+
+/// A comma-separated list of numbers ("0.1,-2,3e-1"); throws soa::Error("<option>: ...")
+/// for an entry that is not a finite number (bad input, exit code 1).
+std::vector<double> parse_numbers(const std::string& text, const std::string& option);
+
+}  // namespace soa::cli
