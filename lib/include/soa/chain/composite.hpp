@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "soa/chain/inverse_dynamics.hpp"
 #include "soa/chain/kinematics.hpp"
 
 namespace soa {
@@ -48,6 +49,63 @@ void mass_matrix_crb(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>
           Mass(col, Bi.v_offset + r) = T[r];
         }
       }
+    }
+  }
+}
+
+/// The composite inertias as the dense block-diagonal operator \f$R = \mathrm{diag}(R(k))\f$
+/// (6n x 6n, body k at rows \f$6(k-1)\f$), the solution of the forward Lyapunov equation
+/// \f$R = \mathcal{E}_\phi R \mathcal{E}_\phi^* + M\f$ (lesson 5). Needs update_phi().
+template <class S>
+MatX<S> composite_inertia_operator(const ModelT<S>& m, const WorkspaceT<S>& ws) {
+  std::vector<SpatialInertiaT<S>> R(std::size_t(m.n()));
+  composite_inertias(m, ws, R);
+  MatX<S> Rd = MatX<S>::Zero(6 * m.n(), 6 * m.n());
+  for (int k = 1; k <= m.n(); ++k) Rd.block(6 * (k - 1), 6 * (k - 1), 6, 6) = R[k - 1].matrix();
+  return Rd;
+}
+
+/// Inverse dynamics through the composite bodies (lesson 5), O(N). With the relative
+/// accelerations \f$z = H^*\dot\beta + a\f$ (so \f$\alpha = \phi^* z\f$) the decomposition
+/// \f$\phi M\phi^* = R + \tilde\phi R + R\tilde\phi^*\f$ turns \f$f = \phi(M\phi^* z + b)\f$
+/// into
+/// \f[ f(k) = R(k)\,\alpha^+(k) + y(k), \qquad
+///     y(k) = \phi(k,k-1)\, y(k-1) + R(k)\, z(k) + b(k), \quad y(0) = 0, \f]
+/// with \f$\alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1)\f$ (\f$\alpha(n+1) = [0;-g]\f$) the
+/// acceleration body k would have if hinge k were locked: the composite body 1..k rides on
+/// body k+1, and each hinge j ≤ k adds the force its relative acceleration needs from the
+/// composite body outboard of it. Then \f$T(k) = H(k) f(k)\f$ less the spring force, as
+/// soa::inverse_dynamics. Fills ws.phi, V, a, alpha, f; \p R gets the composite inertias.
+template <class S>
+void inverse_dynamics_composite(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& beta_dot,
+                                const ExternalForces<S>& f_ext, WorkspaceT<S>& ws,
+                                std::vector<SpatialInertiaT<S>>& R, VecX<S>& T) {
+  update_phi(m, x.theta, ws);
+  update_velocities(m, x, ws);
+  const AccelerationT<S> alpha_base =
+      m.has_gravity() ? gravity_base_acceleration(m) : AccelerationT<S>();
+  update_accelerations(m, x, beta_dot.data(), alpha_base, ws);
+  composite_inertias(m, ws, R);
+  ForceT<S> y;
+  for (int k = 1; k <= m.n(); ++k) {
+    const BodyT<S>& B = m.body(k);
+    const S* th = x.theta.data() + B.q_offset;
+    const AccelerationT<S> z(
+        (B.hinge.H_star_times(th, beta_dot.data() + B.v_offset).vector() + ws.a[k - 1].vector())
+            .eval());
+    const AccelerationT<S> alpha_plus =
+        ws.phi[k - 1].transpose_apply(k < m.n() ? ws.alpha[k] : alpha_base);
+    ForceT<S> b = gyroscopic_force(B.M, ws.V[k - 1]);
+    if (!f_ext.empty()) b -= f_ext[k - 1];
+    y = (k > 1 ? ws.phi[k - 2].apply(y) : ForceT<S>()) + R[k - 1] * z + b;
+    const ForceT<S> f = R[k - 1] * alpha_plus + y;
+    ws.f[k - 1] = f;
+    S* Tk = T.data() + B.v_offset;
+    B.hinge.H_times(th, f, Tk);
+    if (B.stiffness != S(0) || B.damping != S(0)) {
+      S tau[6] = {0, 0, 0, 0, 0, 0};
+      add_spring_force(B, th, x.beta.data() + B.v_offset, tau);
+      for (int i = 0; i < B.hinge.nv(); ++i) Tk[i] -= tau[i];
     }
   }
 }

@@ -1,0 +1,29 @@
+// Lesson 5 exercises: replace each body with your code (statements in exercises.hpp).
+#include "exercises.hpp"
+
+#include "not_done.hpp"
+
+namespace soa::ex05 {
+
+std::vector<SpatialInertia> composite_inertias(const Model& m, const std::vector<Phi>& phi) {
+  (void)m, (void)phi;
+  throw exercise::NotDone("5.1 composite_inertias");
+}
+
+MatX<double> mass_matrix_diagonal(const Model& m, const VecX<double>& theta,
+                                  const std::vector<SpatialInertia>& R, int k) {
+  (void)m, (void)theta, (void)R, (void)k;
+  throw exercise::NotDone("5.2 mass_matrix_diagonal");
+}
+
+MatX<double> crb_mass_matrix_revolute(const Model& m, const VecX<double>& theta) {
+  (void)m, (void)theta;
+  throw exercise::NotDone("5.3 crb_mass_matrix_revolute");
+}
+
+MatX<double> decomposition(const Operators& op) {
+  (void)op;
+  throw exercise::NotDone("5.4 decomposition");
+}
+
+}  // namespace soa::ex05

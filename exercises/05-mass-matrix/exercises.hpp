@@ -1,0 +1,69 @@
+/// \file
+/// Lesson 5 exercises: the composite rigid body inertias and the mass matrix from them.
+///
+/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k joins
+/// body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's entries
+/// start at `m.body(k).q_offset` and `m.body(k).v_offset`). Body k's quantities are at its
+/// hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates. `phi[k-1]` is \f$\phi(k+1,k)\f$:
+/// `.apply(f)` is \f$\phi(k+1,k)\,f\f$ and `.matrix()` its 6x6 matrix; `soa::transform(phi,
+/// M)` is \f$\phi M \phi^*\f$ for a spatial inertia \f$M\f$ (the parallel axis theorem).
+/// The dense operators of soa::OperatorsT put body k at rows \f$6(k-1) \dots 6k-1\f$.
+///
+/// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
+/// and run `make exercises`. Do not call the library function an exercise reproduces (named
+/// in its statement).
+#pragma once
+
+#include <vector>
+
+#include "soa/chain.hpp"
+#include "soa/soa.hpp"
+
+namespace soa::ex05 {
+
+/// **Exercise 5.1: the composite inertia recursion.**
+/// Given \f$\phi(k+1,k)\f$ (\p phi, entry k−1) of a chain, return its composite rigid body
+/// inertias, entry k−1 = \f$R(k)\f$, the inertia about \f$O_k\f$ of bodies 1..k welded
+/// together (lesson 5, section 1), tip to base:
+/// \f[ R(k) = \phi(k,k-1)\, R(k-1)\, \phi^*(k,k-1) + M(k), \qquad R(0) = 0 , \f]
+/// with \f$M(k)\f$ = `m.body(k).M`. Mind the index: \f$\phi(k,k-1)\f$ is `phi[k-2]`.
+/// Do not call soa::composite_inertias, soa::composite_inertia_operator or
+/// soa::mass_matrix_crb.
+std::vector<SpatialInertia> composite_inertias(const Model& m, const std::vector<Phi>& phi);
+
+/// **Exercise 5.2: a diagonal block of the mass matrix.**
+/// Return the n_k x n_k diagonal block of body k (\p k from 1 to n) of the mass matrix
+/// (lesson 5, section 3),
+/// \f[ \mathcal M(k,k) = H(k)\, R(k)\, H^*(k), \f]
+/// with \f$R(k)\f$ = `R[k-1]` and the dense \f$H^*(k)\f$ (6 x n_k) =
+/// `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)` (it may depend on
+/// \f$\theta\f$). Do not call soa::mass_matrix_crb or soa::OperatorsT.
+MatX<double> mass_matrix_diagonal(const Model& m, const VecX<double>& theta,
+                                  const std::vector<SpatialInertia>& R, int k);
+
+/// **Exercise 5.3: the composite rigid body mass matrix of a revolute chain.**
+/// Every hinge of \p m is revolute about the unit axis \f$a_k\f$ = `m.body(k).hinge.axis`,
+/// so \f$H^*(k) = [a_k; 0]\f$ and the mass matrix is n x n. With \f$\phi(k+1,k)\f$ =
+/// `Phi(m.body(k).placement * Pose(exp_so3(theta[k-1] * a_k), 0))` and the composite
+/// inertias \f$R(k)\f$ (exercise 5.1 or soa::composite_inertias), return (lesson 5,
+/// section 3), in \f$O(N^2)\f$,
+/// \f[ \mathcal M(k,k) = H(k) R(k) H^*(k), \qquad
+///     \mathcal M(i,j) = \mathcal M(j,i) = H(i)\, \phi(i,j)\, R(j)\, H^*(j), \ i > j, \f]
+/// carrying the force \f$R(j) H^*(j)\f$ inboard one body at a time,
+/// \f$\phi(i,j)\,F = \phi(i,i-1)\,\phi(i-1,j)\,F\f$. Do not call soa::mass_matrix_crb,
+/// soa::inverse_dynamics or soa::OperatorsT.
+MatX<double> crb_mass_matrix_revolute(const Model& m, const VecX<double>& theta);
+
+/// **Exercise 5.4: the decomposition of \f$\phi M \phi^*\f$.**
+/// \p op holds the dense operators of a chain (soa::OperatorsT): `op.E_phi`
+/// \f$= \mathcal E_\phi\f$, `op.phi` \f$= \phi\f$ and `op.M` \f$= M\f$ (6n x 6n). Solve the
+/// forward Lyapunov equation \f$R = \mathcal E_\phi R \mathcal E_\phi^* + M\f$ for the
+/// block-diagonal \f$R\f$ block by block (its block k is \f$R(k)\f$, from the blocks
+/// \f$\phi(k,k-1)\f$ of \f$\mathcal E_\phi\f$), and return the right-hand side of
+/// (lesson 5, section 2)
+/// \f[ \phi M \phi^* = R + \tilde\phi R + R \tilde\phi^*, \qquad \tilde\phi = \phi - I , \f]
+/// as a dense 6n x 6n matrix. Do not form \f$\phi M \phi^*\f$, and do not call
+/// soa::composite_inertias or soa::composite_inertia_operator.
+MatX<double> decomposition(const Operators& op);
+
+}  // namespace soa::ex05

@@ -1,0 +1,438 @@
+/// # Lesson 6 — Articulated body inertia
+///
+/// Topic 6 of the course (slide 1; Jain 2011, chapter 6): the articulated body inertia
+/// \f$P(k)\f$, the inertia that the part of the chain outboard of hinge k presents at
+/// \f$O_k\f$ when every hinge outboard of body k is free; its Riccati recursion, the gain
+/// \f$G(k)\f$ and the projection \f$\bar\tau(k)\f$; and the operators
+/// \f$K = \mathcal E_\phi G\f$, \f$\mathcal E_\psi = \mathcal E_\phi\bar\tau\f$ and
+/// \f$\psi = (I - \mathcal E_\psi)^{-1}\f$ that lessons 7 and 8 build on. Every identity is
+/// computed on concrete numbers and checked; the program ends with the count of checks that
+/// passed.
+///
+/// Numbering (CONVENTIONS.md): **body 1 is the tip, body n is next to the base**, hinge k
+/// joins body k+1 to body k, and \f$\theta\f$, \f$\beta\f$ are stacked tip first.
+///
+/// Learning goals. After this lesson you can
+/// - say what \f$P(k)\f$ is (a Schur complement of the composite inertia \f$R(k)\f$ of
+///   lesson 5) and why \f$0 \le P(k) \le R(k)\f$;
+/// - run the Riccati recursion for \f$P\f$, \f$D\f$, \f$G\f$, \f$\bar\tau\f$, \f$P^+\f$ tip to
+///   base, and check its properties;
+/// - write it with the operators \f$\mathcal E_\phi\f$, \f$\mathcal E_\psi\f$, \f$\psi\f$;
+/// - recognise a singular \f$D(k)\f$ (a massless tip, a mass on its own hinge axis) and read
+///   the library's diagnostic.
+///
+/// Run it as `lesson06 OUTDIR`: it prints each check and writes \f$D(k)\f$ and the sizes of
+/// \f$P(k)\f$ and \f$R(k)\f$ along a 50-link chain (`l6_chain50.csv`) and their figures
+/// (`l6_chain50_D.png`, `l6_chain50_P_vs_R.png`).
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "checklist.hpp"
+#include "plot.hpp"
+#include "soa/chain.hpp"
+#include "soa/scene.hpp"
+#include "soa/soa.hpp"
+
+namespace {
+
+using soa::Body;
+using soa::HingeType;
+using soa::Model;
+using soa::Pose;
+using soa::SpatialInertia;
+using soa::State;
+using soa::Workspace;
+using Vec3 = soa::Vec3<double>;
+using Mat3 = soa::Mat3<double>;
+using Mat6 = soa::Mat6<double>;
+using VecX = soa::VecX<double>;
+using MatX = soa::MatX<double>;
+
+const double kEps = soa::eps<double>();
+
+/// ## Helpers
+///
+/// A body of a chain (mass, centre of mass \f$p\f$, principal moments about it), placed on
+/// its inboard body at \f${}^{O_{k+1}}T_{O_k^+}\f$, with its hinge; as in lesson 4.
+Body make_body(const std::string& name, const SpatialInertia& M, const Pose& placement,
+               const soa::Hinge& hinge) {
+  Body b;
+  b.name = name;
+  b.M = M;
+  b.placement = placement;
+  b.hinge = hinge;
+  return b;
+}
+
+SpatialInertia inertia(double m, const Vec3& p, const Vec3& J_principal) {
+  return SpatialInertia::from_cm(m, p, J_principal.asDiagonal().toDenseMatrix());
+}
+
+soa::Hinge hinge(HingeType type, const Vec3& axis, const Vec3& axis2 = Vec3::UnitY(),
+                 double pitch = 0) {
+  soa::Hinge h;
+  h.type = type;
+  h.axis = axis.normalized();
+  h.axis2 = axis2.normalized();
+  h.pitch = pitch;
+  return h;
+}
+
+Pose at(const Vec3& rotation_vector, const Vec3& offset) {
+  return Pose(soa::exp_so3<double>(rotation_vector), offset);
+}
+
+/// The small chain of lesson 4: from the base out a universal joint, a helical joint, a
+/// prismatic joint and a revolute joint at the tip (4 bodies, 5 degrees of freedom).
+Model small_chain() {
+  return Model::from_base_first({
+      make_body("shoulder", inertia(3.0, Vec3(0.05, 0.02, 0.25), Vec3(0.05, 0.06, 0.02)),
+                at(Vec3(0.2, 0.0, 0.0), Vec3(0.0, 0.0, 0.3)),
+                hinge(HingeType::Universal, Vec3::UnitZ(), Vec3::UnitY())),
+      make_body("screw", inertia(1.5, Vec3(0.0, 0.03, 0.2), Vec3(0.02, 0.02, 0.01)),
+                at(Vec3(0.0, 0.1, 0.3), Vec3(0.02, 0.0, 0.5)),
+                hinge(HingeType::Helical, Vec3(0.0, 0.3, 1.0), Vec3::UnitY(), 0.05)),
+      make_body("slider", inertia(1.0, Vec3(0.15, 0.0, 0.02), Vec3(0.004, 0.01, 0.01)),
+                at(Vec3(-0.3, 0.0, 0.2), Vec3(0.0, 0.05, 0.4)),
+                hinge(HingeType::Prismatic, Vec3(1.0, 0.0, 0.2))),
+      make_body("tip", inertia(0.8, Vec3(0.2, 0.0, -0.03), Vec3(0.002, 0.01, 0.01)),
+                at(Vec3(0.0, 0.0, 0.3), Vec3(0.4, 0.0, 0.1)),
+                hinge(HingeType::Revolute, Vec3(0.0, 1.0, 0.1))),
+  });
+}
+
+/// The 50-link chain of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/chain50.json`),
+/// or the same chain built in code should the file not load: 50 links of 0.1 m and 0.2 kg,
+/// revolute hinges about x and y in turn.
+Model chain50(std::string& source, VecX& theta) {
+  const std::string path =
+      SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/chain50.json";
+  try {
+    soa::Scene scene = soa::load_scene(path);
+    source = "scene file lessons/03-serial-chain-kinematics/scenes/chain50.json";
+    theta = scene.state.theta;
+    return scene.model;
+  } catch (const std::exception& e) {
+    source = std::string("built in code (") + e.what() + ")";
+  }
+  std::vector<Body> base_first;
+  for (int i = 0; i < 50; ++i)
+    base_first.push_back(make_body(
+        "link" + std::to_string(i + 1), inertia(0.2, Vec3(0, 0, -0.05), Vec3(1.7e-4, 1.7e-4, 1e-5)),
+        Pose(Mat3::Identity(), Vec3(0, 0, i == 0 ? 0.0 : -0.1)),
+        hinge(HingeType::Revolute, i % 2 == 0 ? Vec3::UnitX() : Vec3::UnitY())));
+  Model m = Model::from_base_first(base_first);
+  theta = VecX::Constant(m.nq(), 0.2);
+  return m;
+}
+
+/// The smallest eigenvalue of a symmetric matrix.
+double lambda_min(const MatX& A) {
+  return Eigen::SelfAdjointEigenSolver<MatX>(A, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+}
+double lambda_max(const MatX& A) {
+  return Eigen::SelfAdjointEigenSolver<MatX>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+}
+
+/// The block diagonal \f$6n \times 6n\f$ operator of per-body 6x6 blocks, tip first.
+MatX block_diagonal(const std::vector<Mat6>& b) {
+  const int n = int(b.size());
+  MatX out = MatX::Zero(6 * n, 6 * n);
+  for (int k = 0; k < n; ++k) out.block<6, 6>(6 * k, 6 * k) = b[std::size_t(k)];
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
+    return 2;
+  }
+  const std::filesystem::path out = argv[1];
+  std::filesystem::create_directories(out);
+  soa::lesson::Checklist checks;
+
+  const Model m = small_chain();
+  const int n = m.n(), N = 6 * n;
+  State x = State::rest(m);
+  for (int i = 0; i < m.nq(); ++i) x.theta[i] = 0.3 + 0.2 * i;
+  Workspace ws(m);
+  soa::update_phi(m, x.theta, ws);
+  const soa::Operators op = soa::Operators::build(m, x, {});
+
+  /// ## 1. Concept and definition
+  ///
+  /// Cut the chain at hinge k and hold body k: the bodies k, k−1, ..., 1 form the
+  /// *outboard chain* of hinge k. At rest (\f$\beta = 0\f$), push body k with a spatial
+  /// acceleration \f$\alpha(k)\f$ while the hinges k−1, ..., 1 stay free (no hinge force,
+  /// \f$T(j) = 0\f$ for \f$j < k\f$). The outboard bodies accelerate as they please; the force
+  /// needed at \f$O_k\f$ is linear in \f$\alpha(k)\f$,
+  /// \f[ f(k) = P(k)\,\alpha(k), \f]
+  /// and \f$P(k)\f$ is the **articulated body inertia** of body k. Were the hinges locked,
+  /// the outboard chain would move as one rigid body with the composite inertia \f$R(k)\f$
+  /// of lesson 5. With the operators of lesson 4 restricted to bodies 1..k,
+  /// \f$A = \phi M \phi^*\f$, \f$E_k\f$ the 6k x 6 injection at body k and \f$H'\f$ the
+  /// hinges k−1..1: \f$\alpha = \phi^*(H'^*\dot\beta' + E_k\alpha(k))\f$, \f$f = \phi M\alpha\f$,
+  /// and \f$H' f = 0\f$ gives \f$\dot\beta'\f$; eliminating it,
+  /// \f[ P(k) = R(k) - X(k)\,\mathcal M'^{-1}(k)\, X^*(k), \qquad R(k) = E_k^* A E_k, \quad
+  ///     X(k) = E_k^* A H'^*, \quad \mathcal M'(k) = H' A H'^* , \f]
+  /// a Schur complement: the composite inertia less what the free hinges let go. Since
+  /// \f$\mathcal M' > 0\f$, \f$P(k) \le R(k)\f$ in the Loewner order, with equality at the tip.
+  std::vector<Mat6> P_def(static_cast<std::size_t>(n));
+  for (int k = 1; k <= n; ++k) {
+    const int nv_out = m.body(k).v_offset;  // the dofs of bodies 1..k-1 (tip first)
+    const MatX phi = op.phi.topLeftCorner(6 * k, 6 * k);
+    const MatX A = phi * op.M.topLeftCorner(6 * k, 6 * k) * phi.transpose();
+    const Mat6 R = A.bottomRightCorner<6, 6>();
+    if (nv_out == 0) {
+      P_def[std::size_t(k - 1)] = R;
+      continue;
+    }
+    const MatX Hp = op.H.topLeftCorner(nv_out, 6 * k);
+    const MatX X = A.bottomRows<6>() * Hp.transpose();
+    const MatX M_out = Hp * A * Hp.transpose();
+    P_def[std::size_t(k - 1)] = R - X * M_out.ldlt().solve(X.transpose());
+  }
+
+  /// ## 2. The Riccati recursion
+  ///
+  /// The Schur complement costs O(k^3) per body. Going tip to base instead, body k sees body
+  /// k−1 through the free hinge k−1: of body k−1's articulated inertia only the part hinge
+  /// k−1 cannot give way to, \f$P^+(k-1)\f$, is passed on, moved to \f$O_k\f$ by
+  /// \f$\phi(k,k-1)\f$ (Jain 2011, chapter 6):
+  /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \qquad P^+(0) = 0, \f]
+  /// \f[ D(k) = H(k)P(k)H^*(k), \quad G(k) = P(k)H^*(k)D^{-1}(k), \quad
+  ///     \bar\tau(k) = I - G(k)H(k), \quad P^+(k) = \bar\tau(k)P(k) = P(k) - G(k)D(k)G^*(k). \f]
+  /// This is a discrete Riccati equation; with \f$\bar\tau = I\f$ (no free hinges) it is the
+  /// Lyapunov recursion of \f$R\f$ (lesson 5). \f$D(k)\f$ is the inertia hinge k feels
+  /// along its own free directions. \f$\phi P\phi^*\f$ for a symmetric \f$P\f$ is computed
+  /// from \f$R\f$ and \f$\tilde\ell\f$ without the 6x6 \f$\phi\f$ (soa::transform_symmetric).
+  /// API: soa::articulated_inertias().
+  soa::Articulated art(m);
+  soa::articulated_inertias(m, x, ws, art);
+  double def_err = 0, def_scale = 1;
+  for (int k = 1; k <= n; ++k) {
+    def_err = std::max(def_err, (art.P[std::size_t(k - 1)] - P_def[std::size_t(k - 1)]).norm());
+    def_scale = std::max(def_scale, art.R[std::size_t(k - 1)].matrix().norm());
+  }
+  std::printf("  k  body      n_k  eig(D(k))                      tr P(k)   tr R(k)\n");
+  for (int k = 1; k <= n; ++k) {
+    const soa::HingeMatrix<double>& D = art.D[std::size_t(k - 1)];
+    const VecX d = Eigen::SelfAdjointEigenSolver<MatX>(MatX(D)).eigenvalues();
+    std::string eig;
+    for (int i = 0; i < d.size(); ++i) {
+      char c[32];
+      std::snprintf(c, sizeof c, "%s%.5f", i ? " " : "", d[i]);
+      eig += c;
+    }
+    std::printf("  %d  %-9s %d    %-30s %8.4f  %8.4f\n", k, m.body(k).name.c_str(), int(D.rows()),
+                eig.c_str(), art.P[std::size_t(k - 1)].trace(),
+                art.R[std::size_t(k - 1)].matrix().trace());
+  }
+  checks.check("Riccati P(k) == Schur complement R - X M'^-1 X* (the definition)", def_err,
+               64 * kEps * def_scale);
+
+  /// ## 3. Properties
+  ///
+  /// \f$P(k)\f$ and \f$P^+(k)\f$ are symmetric positive semidefinite, \f$D(k)\f$ is positive
+  /// definite (when every body has mass where its hinge can move it, section 5),
+  /// \f$\bar\tau(k)\f$ is a projection, \f$\bar\tau^2 = \bar\tau\f$ (since
+  /// \f$HG = I\f$), along \f$G\f$ onto the null space of \f$H\f$:
+  /// \f[ H(k)P^+(k) = 0, \qquad P^+(k) = \bar\tau(k)P(k) = \bar\tau(k)P(k)\bar\tau^*(k), \f]
+  /// so \f$P^+(k)\f$ has no stiffness along hinge k's free directions: what hinge k transmits
+  /// inboard carries none of them. And \f$0 \le P^+(k) \le P(k) \le R(k)\f$.
+  double sym = 0, psd = 0, d_min = 1e300, proj = 0, hp = 0, tp = 0, ttp = 0, loewner = 0, scale = 1;
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6& P = art.P[j];
+    const Mat6& Pp = art.P_plus[j];
+    const Mat6 R = art.R[j].matrix();
+    const Mat6 T = art.tau_bar(m, x.theta, k);
+    const soa::JointMap<double> Hs = m.body(k).hinge.H_star(x.theta.data() + m.body(k).q_offset);
+    scale = std::max(scale, R.norm());
+    sym = std::max({sym, (P - P.transpose()).norm(), (Pp - Pp.transpose()).norm()});
+    psd = std::max({psd, -lambda_min(P), -lambda_min(Pp), -lambda_min(P - Pp)});
+    d_min = std::min(d_min, lambda_min(MatX(art.D[j])));
+    proj = std::max(proj, (T * T - T).norm());
+    hp = std::max(hp, (Hs.transpose() * Pp).norm());
+    tp = std::max(tp, (T * P - Pp).norm());
+    ttp = std::max(ttp, (T * P * T.transpose() - Pp).norm());
+    loewner = std::max(loewner, -lambda_min(R - P));
+  }
+  checks.check("P(k), P+(k) symmetric", sym, 16 * kEps * scale);
+  checks.check("P(k) >= P+(k) >= 0 (smallest eigenvalues >= -tol)", std::max(0.0, psd),
+               64 * kEps * scale);
+  checks.check("D(k) positive definite", d_min > 0);
+  checks.check("tau_bar(k)^2 = tau_bar(k)", proj, 64 * kEps * scale);
+  checks.check("H(k) P+(k) = 0", hp, 64 * kEps * scale);
+  checks.check("tau_bar(k) P(k) = P+(k) = tau_bar(k) P(k) tau_bar*(k)", std::max(tp, ttp),
+               64 * kEps * scale);
+  checks.check("P(k) <= R(k): lambda_min(R - P) >= -tol", std::max(0.0, loewner),
+               64 * kEps * scale);
+  checks.check("tip: P(1) = R(1) = M(1)",
+               std::max((art.P[0] - m.body(1).M.matrix()).norm(),
+                        (art.R[0].matrix() - m.body(1).M.matrix()).norm()),
+               16 * kEps * scale);
+
+  /// ## 4. The operators \f$K\f$, \f$\mathcal E_\psi\f$ and \f$\psi\f$
+  ///
+  /// Stacked tip first like \f$\mathcal E_\phi\f$ (lesson 3): \f$P\f$, \f$P^+\f$, \f$D\f$,
+  /// \f$G\f$, \f$\bar\tau\f$ block diagonal, and
+  /// \f[ K = \mathcal E_\phi G, \qquad \mathcal E_\psi = \mathcal E_\phi\bar\tau, \qquad
+  ///     \psi = (I - \mathcal E_\psi)^{-1}, \f]
+  /// \f$\mathcal E_\psi\f$ with \f$\psi(k+1,k) = \phi(k+1,k)\bar\tau(k)\f$ on its block
+  /// subdiagonal; \f$\psi\f$ is block lower triangular with identity diagonal and
+  /// \f$\psi(i,j) = \psi(i,i-1)\cdots\psi(j+1,j)\f$, the articulated analogue of \f$\phi\f$.
+  /// The Riccati recursion in operator form,
+  /// \f[ P = \mathcal E_\phi P^+ \mathcal E_\phi^* + M = \mathcal E_\psi P\,\mathcal E_\psi^* + M,
+  ///     \qquad P(k) = \sum_{j \le k} \psi(k,j)\,M(j)\,\psi^*(k,j), \f]
+  /// the last the diagonal of \f$\psi M\psi^*\f$ as \f$R\f$ is that of \f$\phi M\phi^*\f$.
+  /// A preview of lesson 7: the innovations factorization of the mass matrix,
+  /// \f$\mathcal M = [I + H\phi K]\, D\, [I + H\phi K]^*\f$.
+  const MatX P = block_diagonal(art.P), Pp = block_diagonal(art.P_plus);
+  std::vector<Mat6> taus;
+  MatX G = MatX::Zero(N, m.nv()), D = MatX::Zero(m.nv(), m.nv());
+  for (int k = 1; k <= n; ++k) {
+    const Body& B = m.body(k);
+    taus.push_back(art.tau_bar(m, x.theta, k));
+    G.block(6 * (k - 1), B.v_offset, 6, B.hinge.nv()) = art.G[std::size_t(k - 1)];
+    D.block(B.v_offset, B.v_offset, B.hinge.nv(), B.hinge.nv()) = art.D[std::size_t(k - 1)];
+  }
+  const MatX tau_bar = block_diagonal(taus);
+  const MatX K = op.E_phi * G;
+  const MatX E_psi = op.E_phi * tau_bar;
+  const MatX psi = (MatX::Identity(N, N) - E_psi).inverse();
+  const MatX psiMpsi = psi * op.M * psi.transpose();
+  double upper = 0, chain = 0, diag = 0;
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) upper = std::max(upper, psi.block<6, 6>(6 * a, 6 * b).norm());
+    upper = std::max(upper, (psi.block<6, 6>(6 * a, 6 * a) - Mat6::Identity()).norm());
+    for (int b = 0; b < a; ++b)
+      chain =
+          std::max(chain, (psi.block<6, 6>(6 * a, 6 * b) - psi.block<6, 6>(6 * a, 6 * (a - 1)) *
+                                                               psi.block<6, 6>(6 * (a - 1), 6 * b))
+                              .norm());
+    diag = std::max(diag, (psiMpsi.block<6, 6>(6 * a, 6 * a) - P.block<6, 6>(6 * a, 6 * a)).norm());
+  }
+  const MatX I_HphiK = MatX::Identity(m.nv(), m.nv()) + op.H * op.phi * K;
+  const MatX Mass = op.mass_matrix();
+  std::printf("  psi(4,1) = psi(4,3) psi(3,2) psi(2,1), top-left 3x3:\n");
+  for (int r = 0; r < 3; ++r)
+    std::printf("    %9.5f %9.5f %9.5f\n", psi(18 + r, 0), psi(18 + r, 1), psi(18 + r, 2));
+  checks.check("P = E_phi P+ E_phi* + M",
+               (P - (op.E_phi * Pp * op.E_phi.transpose() + op.M)).norm(), 64 * kEps * scale);
+  checks.check("P = E_psi P E_psi* + M", (P - (E_psi * P * E_psi.transpose() + op.M)).norm(),
+               64 * kEps * scale);
+  checks.check("P(k) = sum_j psi(k,j) M(j) psi*(k,j) (diagonal of psi M psi*)", diag,
+               64 * kEps * scale);
+  checks.check("psi block lower triangular, identity diagonal", upper, 16 * kEps);
+  checks.check("psi(i,j) = psi(i,i-1) psi(i-1,j)", chain, 16 * kEps * std::max(1.0, psi.norm()));
+  checks.check(
+      "K(k+1,k) = phi(k+1,k) G(k)",
+      (K - op.E_phi * G).norm() +
+          (K.bottomRows(N - 6) - op.E_phi.bottomLeftCorner(N - 6, N - 6) * G.topRows(N - 6)).norm(),
+      16 * kEps * std::max(1.0, K.norm()));
+  checks.check("lesson 7 preview: M = [I + H phi K] D [I + H phi K]*",
+               (Mass - I_HphiK * D * I_HphiK.transpose()).norm(),
+               64 * kEps * std::max(1.0, Mass.norm()));
+
+  /// ## 5. When \f$D(k)\f$ is singular
+  ///
+  /// \f$D(k) = H(k)P(k)H^*(k)\f$ is positive definite as long as hinge k moves some mass of
+  /// its outboard chain that no free hinge outboard lets go. It is singular for a massless
+  /// tip (\f$P(1) = M(1) = 0\f$), and for a point mass on the axis of its revolute hinge
+  /// (\f$D(1) = m\,|a \times p|^2 = 0\f$); \f$G = PH^*D^{-1}\f$ does not exist. Nearly
+  /// singular is as bad: \f$D^{-1}\f$ loses all its digits. The library compares
+  /// \f$\lambda_{\min}(D(k))\f$ with \f$\lambda_{\max}(H(k)R(k)H^*(k))\f$, the inertia the
+  /// hinge would feel with every hinge outboard locked (\f$0 < D \le HRH^*\f$ by section 3),
+  /// and stops with a soa::Error naming the body when the ratio is not above
+  /// soa::singular_D_threshold() \f$= 10^3\varepsilon\f$.
+  std::printf("  singular_D_threshold = %.3g\n", soa::singular_D_threshold<double>());
+  const auto diagnose = [](const Model& chain_model) {
+    const State x0 = State::rest(chain_model);
+    Workspace w(chain_model);
+    soa::update_phi(chain_model, x0.theta, w);
+    soa::Articulated a(chain_model);
+    try {
+      soa::articulated_inertias(chain_model, x0, w, a);
+    } catch (const soa::Error& e) {
+      std::printf("  soa::Error: %s\n", e.what());
+      return std::string(e.what());
+    }
+    std::printf("  no error\n");
+    return std::string();
+  };
+  const SpatialInertia link = inertia(2.0, Vec3(0.3, 0.1, 0.0), Vec3(0.05, 0.05, 0.05));
+  const Pose down = at(Vec3::Zero(), Vec3(0.5, 0, 0));
+  const std::string massless =
+      diagnose(Model::from_base_first({make_body("link", link, at(Vec3::Zero(), Vec3(0, 0, 0.5)),
+                                                 hinge(HingeType::Revolute, Vec3::UnitZ())),
+                                       make_body("massless_tip", SpatialInertia(), down,
+                                                 hinge(HingeType::Revolute, Vec3::UnitZ()))}));
+  checks.check("massless tip: soa::Error naming body 'massless_tip' and D(1)",
+               massless.rfind("body 'massless_tip': articulated inertia D(1) singular", 0) == 0);
+  const std::string bead = diagnose(
+      Model::from_base_first({make_body("link", link, at(Vec3::Zero(), Vec3(0, 0, 0.5)),
+                                        hinge(HingeType::Revolute, Vec3::UnitZ())),
+                              make_body("bead", inertia(1.0, Vec3(0, 0, 0.2), Vec3::Zero()), down,
+                                        hinge(HingeType::Revolute, Vec3::UnitZ()))}));
+  checks.check("point mass on its hinge axis: soa::Error naming body 'bead'",
+               bead.rfind("body 'bead': articulated inertia D(1) singular", 0) == 0);
+
+  /// ## 6. Along a long chain
+  ///
+  /// Down the 50-link chain from the tip, \f$R(k)\f$ grows like the mass times the square
+  /// of the length of the outboard chain, but \f$P(k)\f$ does not: through 49 free hinges the
+  /// outboard links give way to a rotation of link k, so \f$D(k)\f$ levels off after a
+  /// few links while \f$H R H^*\f$ keeps growing, as \f$k^3\f$ for a straight chain. The figures show \f$D(k)\f$
+  /// against \f$H(k)R(k)H^*(k)\f$, and \f$\lambda_{\max}(P(k))/\lambda_{\max}(R(k))\f$ and
+  /// \f$\mathrm{tr}\,P(k)/\mathrm{tr}\,R(k)\f$, all \f$\le 1\f$ by section 3.
+  std::string source;
+  VecX theta50;
+  const Model m50 = chain50(source, theta50);
+  std::printf("  50-link chain: %s (%d bodies)\n", source.c_str(), m50.n());
+  State x50 = State::rest(m50);
+  if (theta50.size() == m50.nq()) x50.theta = theta50;
+  Workspace ws50(m50);
+  soa::update_phi(m50, x50.theta, ws50);
+  soa::Articulated art50(m50);
+  soa::articulated_inertias(m50, x50, ws50, art50);
+  std::ofstream csv(out / "l6_chain50.csv");
+  csv << "k,D,HRH,lmaxP_over_lmaxR,trP_over_trR\n";
+  double worst_ratio = 0, worst_loewner = 0;
+  for (int k = 1; k <= m50.n(); ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Body& B = m50.body(k);
+    const soa::JointMap<double> Hs = B.hinge.H_star(x50.theta.data() + B.q_offset);
+    const Mat6 R = art50.R[j].matrix();
+    const double d = lambda_min(MatX(art50.D[j]));
+    const double hrh = lambda_max(MatX(Hs.transpose() * R * Hs));
+    const double lr = lambda_max(art50.P[j]) / lambda_max(R);
+    const double tr = art50.P[j].trace() / R.trace();
+    worst_ratio = std::max({worst_ratio, lr, tr});
+    worst_loewner = std::max(worst_loewner, -lambda_min(R - art50.P[j]) / R.norm());
+    char line[128];
+    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6f,%.6f\n", k, d, hrh, lr, tr);
+    csv << line;
+    if (k == 1 || k == 10 || k == 25 || k == m50.n())
+      std::printf("  k = %2d: D = %.3e, H R H* = %.3e, lmax P/lmax R = %.3f, tr P/tr R = %.3f\n", k,
+                  d, hrh, lr, tr);
+  }
+  csv.close();
+  checks.check("chain50: P(k) <= R(k) all along", std::max(0.0, worst_loewner), 64 * kEps);
+  checks.check("chain50: lmax(P)/lmax(R) <= 1 and tr P/tr R <= 1", worst_ratio <= 1 + 64 * kEps);
+  checks.check("l6_chain50.csv written", bool(csv));
+  checks.check("figure written: l6_chain50_D.png",
+               soa::lesson::plot("l6_chain50_D.gp", out, "l6_chain50_D.png"));
+  checks.check("figure written: l6_chain50_P_vs_R.png",
+               soa::lesson::plot("l6_chain50_P_vs_R.gp", out, "l6_chain50_P_vs_R.png"));
+
+  return checks.finish();
+}

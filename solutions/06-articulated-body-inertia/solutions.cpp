@@ -1,0 +1,59 @@
+// Lesson 6 reference solutions (statements in exercises/06-articulated-body-inertia).
+#include "exercises.hpp"
+
+namespace soa::ex06 {
+
+// Lesson 6, section 2: the Riccati step, tip to base.
+RiccatiStep riccati_step(const Mat6& P_plus_prev, const Phi& phi, const SpatialInertia& M,
+                         const MatX<double>& H_star) {
+  RiccatiStep s;
+  s.P = transform_symmetric(phi, P_plus_prev) + M.matrix();
+  const MatX<double> PHs = s.P * H_star;
+  s.D = H_star.transpose() * PHs;
+  s.G = PHs * s.D.inverse();
+  s.P_plus = s.P - s.G * PHs.transpose();
+  return s;
+}
+
+// Lesson 6, section 3: tau_bar = I - G H.
+Mat6 tau_bar(const Mat6& P, const MatX<double>& H_star) {
+  const MatX<double> PHs = P * H_star;
+  const MatX<double> D = H_star.transpose() * PHs;
+  return Mat6::Identity() - PHs * D.inverse() * H_star.transpose();
+}
+
+// Lesson 6, section 2, for 1-dof revolute hinges: D(k) = a* P_aa a, G = P [a; 0] / D.
+VecX<double> revolute_D(const Model& m, const VecX<double>& theta) {
+  Workspace ws(m);
+  update_phi(m, theta, ws);
+  VecX<double> D(m.n());
+  Mat6 P_plus = Mat6::Zero();
+  for (int k = 1; k <= m.n(); ++k) {
+    Mat6 P = m.body(k).M.matrix();
+    if (k > 1) P += transform_symmetric(ws.phi[std::size_t(k - 2)], P_plus);
+    Vec6<double> Hs = Vec6<double>::Zero();
+    Hs.head<3>() = m.body(k).hinge.axis;
+    const Vec6<double> PHs = P * Hs;
+    D[k - 1] = Hs.dot(PHs);
+    P_plus = P - PHs * PHs.transpose() / D[k - 1];
+  }
+  return D;
+}
+
+// Lesson 6, section 2: phi P phi* by blocks.
+Mat6 transform_symmetric(const Phi& phi, const Mat6& P) {
+  const Mat3<double>& R = phi.R();
+  const Mat3<double> A = R * P.topLeftCorner<3, 3>() * R.transpose();
+  const Mat3<double> B = R * P.topRightCorner<3, 3>() * R.transpose();
+  const Mat3<double> C = R * P.bottomRightCorner<3, 3>() * R.transpose();
+  const Mat3<double> L = tilde(phi.l());
+  const Mat3<double> BLC = B + L * C;
+  Mat6 out;
+  out.topLeftCorner<3, 3>() = A + L * B.transpose() - B * L - L * C * L;
+  out.topRightCorner<3, 3>() = BLC;
+  out.bottomLeftCorner<3, 3>() = BLC.transpose();
+  out.bottomRightCorner<3, 3>() = C;
+  return out;
+}
+
+}  // namespace soa::ex06

@@ -1,0 +1,142 @@
+/// \file
+/// Lesson 5's identities on random chains (every hinge type, 1 to 12 bodies, fixed seed):
+///   R(k) = phi(k,k-1) R(k-1) phi*(k,k-1) + M(k)  vs  R - E_phi R E_phi* = M (dense),
+///   phi M phi* = R + phi~ R + R phi~*  (phi~ = phi - I),
+///   M(i,j) = H(i) phi(i,j) R(j) H*(j): soa::mass_matrix_crb vs soa::OperatorsT::mass_matrix,
+///   soa::inverse_dynamics_composite vs soa::inverse_dynamics,
+/// and the CRB mass matrix in float, double and long double. Residuals are relative to the
+/// magnitude of the terms, in units of N eps<S> (N = 6n).
+#include "../chain/chain_support.hpp"
+
+namespace soa::test {
+namespace {
+
+constexpr int kMaxBodies = 12;
+constexpr double kTol = 2.0;  // in units of N eps; worst seen is reported by Worst
+
+TEST(composite_Lyapunov, RecursionSolvesOperatorEquation) {
+  Random<double> rnd;
+  Worst w("R - E_phi R E_phi* - M [N eps |M|]"), w_sym("R(k) - R*(k) [N eps |R|]");
+  for (int i = 0; i < kCases; ++i) {
+    const Model m = random_chain(rnd, chain_size(i, kMaxBodies));
+    const State x = random_state(rnd, m);
+    const Operators op = Operators::build(m, x);
+    Workspace ws(m);
+    update_phi(m, x.theta, ws);
+    const MatX<double> R = composite_inertia_operator(m, ws);
+    const double units = 6 * m.n() * eps<double>();
+    const double scale = double(op.E_phi.norm()) * op.E_phi.norm() * R.norm() + op.M.norm();
+    w.add(residual(MatX<double>(R - op.E_phi * R * op.E_phi.transpose()), op.M, scale) / units, i);
+    w_sym.add(residual(R, MatX<double>(R.transpose()), R.norm()) / units, i);
+  }
+  EXPECT_LE(w.value(), kTol);
+  EXPECT_LE(w_sym.value(), kTol);
+}
+
+TEST(composite_Decomposition, PhiMPhiStar) {
+  Random<double> rnd;
+  Worst w("phi M phi* - (R + phi~ R + R phi~*) [N eps]");
+  for (int i = 0; i < kCases; ++i) {
+    const Model m = random_chain(rnd, chain_size(i, kMaxBodies));
+    const State x = random_state(rnd, m);
+    const Operators op = Operators::build(m, x);
+    Workspace ws(m);
+    update_phi(m, x.theta, ws);
+    const MatX<double> R = composite_inertia_operator(m, ws);
+    const MatX<double> phi_t = op.phi - MatX<double>::Identity(op.phi.rows(), op.phi.cols());
+    const MatX<double> lhs = op.phi * op.M * op.phi.transpose();
+    const MatX<double> rhs = R + phi_t * R + R * phi_t.transpose();
+    const double scale = double(op.phi.norm()) * op.phi.norm() * op.M.norm();
+    w.add(residual(lhs, rhs, scale) / (6 * m.n() * eps<double>()), i);
+  }
+  EXPECT_LE(w.value(), kTol);
+}
+
+TEST(composite_MassMatrix, CrbMatchesNewtonEulerFactorization) {
+  Random<double> rnd;
+  Worst w("mass_matrix_crb - H phi M phi* H* [N eps]"), w_diag("M(k,k) - H(k) R(k) H*(k) [N eps]"),
+      w_R("H (R + phi~ R + R phi~*) H* [N eps]");
+  for (int i = 0; i < kCases; ++i) {
+    const Model m = random_chain(rnd, chain_size(i, kMaxBodies), ChainOptions{true, true, true});
+    const State x = random_state(rnd, m);
+    const Operators op = Operators::build(m, x);
+    const MatX<double> M_ne = op.mass_matrix();
+    Workspace ws(m);
+    update_phi(m, x.theta, ws);
+    std::vector<SpatialInertia> Rk(std::size_t(m.n()));
+    MatX<double> M_crb;
+    mass_matrix_crb(m, x, ws, Rk, M_crb);
+    const double units = 6 * m.n() * eps<double>();
+    const double scale =
+        double(op.phi.norm()) * op.phi.norm() * op.M.norm() * op.H.norm() * op.H.norm();
+    w.add(residual(M_crb, M_ne, scale) / units, i);
+    double gap = 0;
+    for (int k = 1; k <= m.n(); ++k) {
+      const Body& B = m.body(k);
+      const auto Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
+      const MatX<double> Mkk = Hs.transpose() * Rk[std::size_t(k - 1)].matrix() * Hs;
+      const int o = B.v_offset, nk = B.hinge.nv();
+      gap = std::max(gap, residual(MatX<double>(M_crb.block(o, o, nk, nk)), Mkk, scale));
+    }
+    w_diag.add(gap / units, i);
+    const MatX<double> R = composite_inertia_operator(m, ws);
+    const MatX<double> phi_t = op.phi - MatX<double>::Identity(op.phi.rows(), op.phi.cols());
+    const MatX<double> M_R = op.H * (R + phi_t * R + R * phi_t.transpose()) * op.H.transpose();
+    w_R.add(residual(M_R, M_ne, scale) / units, i);
+  }
+  EXPECT_LE(w.value(), kTol);
+  EXPECT_LE(w_diag.value(), kTol);
+  EXPECT_LE(w_R.value(), kTol);
+}
+
+TEST(composite_InverseDynamics, MatchesNewtonEuler) {
+  Random<double> rnd;
+  Worst w_T("T composite - T Newton-Euler [N eps |f|]"), w_f("f composite - f [N eps |f|]");
+  for (int i = 0; i < kCases; ++i) {
+    const Model m = random_chain(rnd, chain_size(i, kMaxBodies), ChainOptions{true, true, true});
+    const State x = random_state(rnd, m);
+    const VecX<double> beta_dot = random_vector(rnd, m.nv());
+    const ExternalForces<double> f_ext = i % 2 ? random_forces(rnd, m) : ExternalForces<double>{};
+    Workspace ws(m), ref(m);
+    VecX<double> T(m.nv()), T_ref(m.nv());
+    std::vector<SpatialInertia> R(std::size_t(m.n()));
+    inverse_dynamics_composite(m, x, beta_dot, f_ext, ws, R, T);
+    inverse_dynamics(m, x, beta_dot, f_ext, ref, T_ref);
+    const Operators op = Operators::build(m, x, f_ext);
+    // rounding scales with the largest terms: |phi|^2 |R| |alpha| and |b|
+    double s = double(stack(ref.f).norm()) + double(stack(ref.alpha).norm()) * op.M.norm();
+    s *= 1 + double(op.phi.norm()) * op.phi.norm();
+    const double units = 6 * m.n() * eps<double>();
+    w_T.add(residual(T, T_ref, s * (1 + op.H.norm())) / units, i);
+    w_f.add(residual(stack(ws.f), stack(ref.f), s) / units, i);
+  }
+  EXPECT_LE(w_T.value(), kTol);
+  EXPECT_LE(w_f.value(), kTol);
+}
+
+template <class S>
+class composite_Precision : public ::testing::Test {};
+TYPED_TEST_SUITE(composite_Precision, Scalars, ScalarNames);
+
+TYPED_TEST(composite_Precision, CrbMassMatrix) {
+  using S = TypeParam;
+  Random<S> rnd;
+  Worst w("mass_matrix_crb - H phi M phi* H* (" + scalar_name<S>() + ") [N eps]");
+  for (int i = 0; i < kCases; ++i) {
+    const ModelT<S> m = random_chain(rnd, chain_size(i, kMaxBodies));
+    const StateT<S> x = random_state(rnd, m);
+    const OperatorsT<S> op = OperatorsT<S>::build(m, x);
+    WorkspaceT<S> ws(m);
+    update_phi(m, x.theta, ws);
+    std::vector<SpatialInertiaT<S>> R(std::size_t(m.n()));
+    MatX<S> M_crb;
+    mass_matrix_crb(m, x, ws, R, M_crb);
+    const double scale = double(op.phi.norm()) * double(op.phi.norm()) * double(op.M.norm()) *
+                         double(op.H.norm()) * double(op.H.norm());
+    w.add(residual(M_crb, op.mass_matrix(), scale) / (6 * m.n() * double(eps<S>())), i);
+  }
+  EXPECT_LE(w.value(), kTol);
+}
+
+}  // namespace
+}  // namespace soa::test
