@@ -1,6 +1,8 @@
 // Benchmarks of the O(N) Newton-Euler inverse dynamics (lesson 4) on revolute chains:
 // the time per joint must stay flat as N grows. Variants show what a scene pays for the
 // parts it uses: gravity, external forces, motion (at rest the velocity terms are skipped).
+// And the composite-body mass matrix (lesson 5), O(N^2): Google Benchmark fits the exponent
+// (MassMatrixCRB_BigO).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -102,8 +104,25 @@ void InverseDynamicsAtRest(benchmark::State& state) {
   report(state, n);
 }
 
+// The O(N^2) mass matrix from composite rigid body inertias (lesson 5).
+void MassMatrixCRB(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Chain c(n, false);
+  soa::Workspace ws(c.model);
+  std::vector<soa::SpatialInertia> R(n);
+  soa::MatX<double> M(n, n);
+  soa::update_phi(c.model, c.x.theta, ws);
+  for (auto _ : state) {
+    soa::mass_matrix_crb(c.model, c.x, ws, R, M);
+    benchmark::DoNotOptimize(M.data());
+  }
+  state.counters["joints"] = n;
+  state.SetComplexityN(n);
+}
+
 }  // namespace
 
+BENCHMARK(MassMatrixCRB)->RangeMultiplier(2)->Range(1, 1024)->Complexity();
 BENCHMARK(InverseDynamics)
     ->Arg(1)
     ->Arg(2)
