@@ -1,12 +1,14 @@
 # The build step of `make docs` (cmake -P, run by the `docs` target after the lesson tour):
-#   1. copy the figures the tour drew (COURSE/NN-topic/*.png|svg) into FIGURES (IMAGE_PATH);
+#   1. copy the figures the tour drew (COURSE/NN-topic/*.png|svg) into FIGURES (IMAGE_PATH),
+#      and the tables it wrote (COURSE/NN-topic/*.md) into TABLES (EXAMPLE_PATH), where a
+#      page includes one by `\includedoc name.md`;
 #   2. run Doxygen on DOXYFILE into HTML (a fresh folder; any warning fails);
 #   3. copy the MathJax subset the pages need from MATHJAX into HTML/mathjax (links
 #      dereferenced, so the folder can be copied or served anywhere);
 #   4. check that no page loads anything from the network.
-# Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, MATHJAX.
+# Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, TABLES, MATHJAX.
 cmake_minimum_required(VERSION 3.25)
-foreach(var DOXYGEN DOXYFILE HTML COURSE FIGURES MATHJAX)
+foreach(var DOXYGEN DOXYFILE HTML COURSE FIGURES TABLES MATHJAX)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "docs.cmake: ${var} is not set")
   endif()
@@ -25,6 +27,23 @@ foreach(fig IN LISTS figures)
   endif()
   list(APPEND seen "${name}")
   file(COPY_FILE "${fig}" "${FIGURES}/${name}")
+endforeach()
+
+# Tables: the Markdown fragments a lesson program wrote from its own numbers (e.g.
+# l6_extreme.md), one flat folder as well. Doxygen reads them through `\includedoc`, so
+# they may hold Markdown but no Doxygen formulas.
+file(REMOVE_RECURSE "${TABLES}")
+file(MAKE_DIRECTORY "${TABLES}")
+file(GLOB tables "${COURSE}/[0-9][0-9]-*/*.md")
+set(seen "")
+foreach(table IN LISTS tables)
+  get_filename_component(name "${table}" NAME)
+  if(name IN_LIST seen)
+    message(FATAL_ERROR "docs: two lessons wrote a table named ${name} under ${COURSE}; "
+                        "table names must be unique across lessons")
+  endif()
+  list(APPEND seen "${name}")
+  file(COPY_FILE "${table}" "${TABLES}/${name}")
 endforeach()
 
 # 2. Doxygen, on a clean output folder (no stale pages of removed lessons).
@@ -82,5 +101,6 @@ endif()
 
 list(LENGTH pages n_pages)
 list(LENGTH figures n_figures)
-message(STATUS "Course notes: ${n_pages} pages, ${n_figures} figures, offline math -> "
-               "${HTML}/index.html")
+list(LENGTH tables n_tables)
+message(STATUS "Course notes: ${n_pages} pages, ${n_figures} figures, ${n_tables} tables, "
+               "offline math -> ${HTML}/index.html")

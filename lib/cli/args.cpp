@@ -18,19 +18,26 @@ constexpr VerbInfo kVerbs[] = {
     {Verb::Kinematics, "kinematics", "--q, --qd, --qdd, --body"},
     {Verb::Jacobian, "jacobian", "--q, --body"},
     {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd"},
-    {Verb::MassMatrix, "mass-matrix", "--q"},
+    {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau"},
+    {Verb::MassMatrix, "mass-matrix", "--q, --inverse"},
+    {Verb::Simulate, "simulate", "--q, --qd, --integrator, --dt, --tol, --t-end, --out"},
 };
 
 bool takes(Verb v, const std::string& option) {
   switch (v) {
     case Verb::Kinematics:
-      return true;
+      return option == "--q" || option == "--qd" || option == "--qdd" || option == "--body";
     case Verb::Jacobian:
       return option == "--q" || option == "--body";
     case Verb::InverseDynamics:
-      return option != "--body";
+      return option == "--q" || option == "--qd" || option == "--qdd";
+    case Verb::ForwardDynamics:
+      return option == "--q" || option == "--qd" || option == "--tau";
     case Verb::MassMatrix:
-      return option == "--q";
+      return option == "--q" || option == "--inverse";
+    case Verb::Simulate:
+      return option == "--q" || option == "--qd" || option == "--integrator" || option == "--dt" ||
+             option == "--tol" || option == "--t-end" || option == "--out";
   }
   return false;
 }
@@ -62,7 +69,8 @@ Args parse_args(const std::vector<std::string>& argv) {
     if (!argv[0].empty() && argv[0][0] == '-')
       throw UsageError("expected a verb before \"" + argv[0] + "\"");
     throw UsageError("unknown verb \"" + argv[0] +
-                     "\" (kinematics, jacobian, inverse-dynamics or mass-matrix)");
+                     "\" (kinematics, jacobian, inverse-dynamics, forward-dynamics, "
+                     "mass-matrix or simulate)");
   }
   const Verb v = *a.verb;
   const std::string verb = verb_name(v);
@@ -75,18 +83,31 @@ Args parse_args(const std::vector<std::string>& argv) {
     if (arg.size() > 1 && arg[0] == '-') {
       const std::size_t eq = arg.find('=');
       const std::string option = arg.substr(0, eq);
-      std::optional<std::string>* slot = option == "--q"      ? &a.q
-                                         : option == "--qd"   ? &a.qd
-                                         : option == "--qdd"  ? &a.qdd
-                                         : option == "--body" ? &a.body
-                                                              : nullptr;
-      if (!slot) throw UsageError("unknown option \"" + option + "\"");
-      if (!takes(v, option)) {
+      auto refuse = [&] {
         std::string options;
         for (const VerbInfo& info : kVerbs)
           if (info.verb == v) options = info.options;
         throw UsageError(verb + " does not take " + option + " (it takes " + options + ")");
+      };
+      if (option == "--inverse") {  // a flag
+        if (!takes(v, option)) refuse();
+        if (eq != std::string::npos) throw UsageError("--inverse takes no value");
+        a.inverse = true;
+        continue;
       }
+      std::optional<std::string>* slot = option == "--q"            ? &a.q
+                                         : option == "--qd"         ? &a.qd
+                                         : option == "--qdd"        ? &a.qdd
+                                         : option == "--tau"        ? &a.tau
+                                         : option == "--integrator" ? &a.integrator
+                                         : option == "--dt"         ? &a.dt
+                                         : option == "--tol"        ? &a.tol
+                                         : option == "--t-end"      ? &a.t_end
+                                         : option == "--out"        ? &a.out
+                                         : option == "--body"       ? &a.body
+                                                                    : nullptr;
+      if (!slot) throw UsageError("unknown option \"" + option + "\"");
+      if (!takes(v, option)) refuse();
       if (*slot) throw UsageError(option + " given twice");
       if (eq != std::string::npos) {
         *slot = arg.substr(eq + 1);

@@ -13,16 +13,20 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class Verb { Kinematics, Jacobian, InverseDynamics, MassMatrix };
+enum class Verb { Kinematics, Jacobian, InverseDynamics, ForwardDynamics, MassMatrix, Simulate };
 
-/// "kinematics", "jacobian", "inverse-dynamics", "mass-matrix".
+/// "kinematics", "jacobian", "inverse-dynamics", "forward-dynamics", "mass-matrix",
+/// "simulate".
 const char* verb_name(Verb v);
 
 struct Args {
   bool help = false;         ///< --help or -h: print the help of the verb (or of soa)
   std::optional<Verb> verb;  ///< absent only with a top-level --help
   std::string scene;         ///< the scene file
-  std::optional<std::string> q, qd, qdd, body;  ///< option values as given
+  std::optional<std::string> q, qd, qdd, tau, body;  ///< option values as given
+  /// simulate: --integrator, --dt, --tol, --t-end, --out
+  std::optional<std::string> integrator, dt, tol, t_end, out;
+  bool inverse = false;  ///< mass-matrix --inverse
 };
 
 /// Parses the arguments after the program name; throws UsageError.

@@ -1,10 +1,11 @@
-// The four computations of `soa`, each from a scene and a state to a JSON result.
+// The six computations of `soa`, each from a scene and a state to a JSON result.
 #pragma once
 
 #include <string>
 
 #include "json_out.hpp"
 #include "soa/scene.hpp"
+#include "soa/sim.hpp"
 
 namespace soa::cli {
 
@@ -22,7 +23,17 @@ Json jacobian(const Scene& scene, const State& x, const Scene::Frame& frame);
 /// The hinge forces T per body and as one vector in file order.
 Json inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& beta_dot);
 
-/// The mass matrix in file order, with its symmetry and definiteness.
-Json mass_matrix(const Scene& scene, const State& x);
+/// The accelerations at the state \p x under the hinge forces \p tau (articulated body
+/// algorithm), per body and in file order, with the difference from CRB + LDLT.
+Json forward_dynamics(const Scene& scene, const State& x, const VecX<double>& tau);
+
+/// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into \p csv_path
+/// (none when empty), the summary as JSON.
+Json simulate(const Scene& scene, const State& x, const SimulationOptions& opt,
+              const std::string& csv_path);
+
+/// The mass matrix in file order, with its symmetry and definiteness; with \p inverse, also
+/// its inverse by the O(N^2) algorithm of lesson 7.
+Json mass_matrix(const Scene& scene, const State& x, bool inverse);
 
 }  // namespace soa::cli

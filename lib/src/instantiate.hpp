@@ -38,6 +38,16 @@ namespace soa {
   template void mass_matrix_crb<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&,      \
                                    std::vector<SpatialInertiaT<S>>&, MatX<S>&);                   \
   template AccelerationT<S> jacobian_dot_times_beta<S>(const ModelT<S>&, const StateT<S>&,        \
-                                                       WorkspaceT<S>&, int, const PoseT<S>&);
+                                                       WorkspaceT<S>&, int, const PoseT<S>&);     \
+  template struct ForwardDynamicsT<S>;                                                            \
+  template void forward_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,           \
+                                    const ExternalForces<S>&, WorkspaceT<S>&,                     \
+                                    ForwardDynamicsT<S>&, VecX<S>&);                              \
+  template struct InnovationsOperatorsT<S>;                                                       \
+  template struct MassMatrixInverseT<S>;                                                          \
+  template void mass_matrix_inverse<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&,  \
+                                       MassMatrixInverseT<S>&, MatX<S>&);                         \
+  template class ChainSystemT<S>;                                                                 \
+  template class StepperT<S>;
 
 }  // namespace soa

@@ -337,7 +337,7 @@ TEST(articulated_SingularD, MasslessTip) {
        body("massless_tip", soa::SpatialInertia(), Vec3(0.5, 0, 0), revolute(Vec3::UnitZ()))});
   const std::string msg = diagnostic(m);
   EXPECT_EQ(msg.rfind("body 'massless_tip': articulated inertia D(1) singular: "
-                      "lambda_min(D)/lambda_max(H R H*) = 0,",
+                      "lambda_min(D)/lambda_max(H Q H*) = 0,",
                       0),
             0u)
       << msg;
@@ -354,7 +354,7 @@ TEST(articulated_SingularD, PointMassOnTheAxis) {
 
 // Inboard, D(2) is what hinge 2 feels through the free spherical hinge of the tip: only the
 // tip's mass at the joint (on axis 2) and body 2's own rotational inertia J about axis 2.
-// With J = 1e-20 of the composite inertia H R H* (which counts the tip's rotational inertia)
+// With J = 1e-20 of H Q H* (Q = phi P(1) phi* + M(2) counts the tip's rotational inertia)
 // D(2) is numerically singular; with J = 1e-6 it is light but healthy.
 soa::Model spherical_tip_chain(double J) {
   soa::Hinge ball;

@@ -23,7 +23,8 @@ struct Inputs {
     psi = soa::PhiT<S>(soa::exp_so3<S>(v3()), v3());
     f = soa::ForceT<S>(v3(), v3());
     V = soa::VelocityT<S>(v3(), v3());
-    M = soa::SpatialInertiaT<S>::from_cm(S(2), v3(), soa::Mat3<S>(soa::Vec3<S>(1, 2, 2.5).asDiagonal()));
+    M = soa::SpatialInertiaT<S>::from_cm(S(2), v3(),
+                                         soa::Mat3<S>(soa::Vec3<S>(1, 2, 2.5).asDiagonal()));
   }
 };
 
@@ -79,9 +80,9 @@ void InertiaTransformDense6x6(benchmark::State& state) {
 
 }  // namespace
 
-#define SOA_BENCH_ALL(fn)                       \
-  BENCHMARK_TEMPLATE(fn, float);                \
-  BENCHMARK_TEMPLATE(fn, double);               \
+#define SOA_BENCH_ALL(fn)         \
+  BENCHMARK_TEMPLATE(fn, float);  \
+  BENCHMARK_TEMPLATE(fn, double); \
   BENCHMARK_TEMPLATE(fn, long double)
 
 SOA_BENCH_ALL(PhiApply);

@@ -5,10 +5,13 @@
 
 #include "soa/chain/articulated.hpp"
 #include "soa/chain/composite.hpp"
+#include "soa/chain/forward_dynamics.hpp"
 #include "soa/chain/hinge.hpp"
+#include "soa/chain/innovations.hpp"
 #include "soa/chain/inverse_dynamics.hpp"
 #include "soa/chain/jacobian.hpp"
 #include "soa/chain/kinematics.hpp"
+#include "soa/chain/mass_matrix_inverse.hpp"
 #include "soa/chain/model.hpp"
 #include "soa/chain/operators.hpp"
 #include "soa/chain/workspace.hpp"

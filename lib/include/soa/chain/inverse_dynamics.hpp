@@ -37,6 +37,28 @@ void add_spring_force(const BodyT<S>& B, const S* theta, const S* beta, S* tau) 
 template <class S>
 using ExternalForces = std::vector<ForceT<S>>;
 
+namespace detail {
+
+/// The force body k needs for its own motion (lesson 2), \f$M(k)\,\alpha(k) + b(k)\f$ with the
+/// gyroscopic term \f$b = [\tilde\omega J \omega;\ m\tilde\omega\tilde\omega p]\f$ (zero at
+/// rest, \f$\omega = 0\f$), from \f$(m, h = mp, J)\f$, on the parts:
+/// \f[ N = J\dot\omega + h \times \dot v + \omega \times J\omega, \qquad
+///     F = m\dot v - h \times \dot\omega + \omega \times (\omega \times h). \f]
+template <class S>
+EIGEN_ALWAYS_INLINE void body_force(const SpatialInertiaT<S>& M, const Vec3<S>& w,
+                                    const Vec3<S>& dw, const Vec3<S>& dv, bool moving, Vec3<S>& N,
+                                    Vec3<S>& F) {
+  const Vec3<S>& h = M.h();
+  N = M.J() * dw + h.cross(dv);
+  F = M.mass() * dv - h.cross(dw);
+  if (moving) {
+    N += w.cross(M.J() * w);
+    F += w.cross(w.cross(h));
+  }
+}
+
+}  // namespace detail
+
 /// Newton-Euler inverse dynamics (lesson 4): the hinge forces \f$T\f$ that give the chain
 /// the accelerations \f$\dot\beta\f$ at the state \p x.
 ///
@@ -46,50 +68,64 @@ using ExternalForces = std::vector<ForceT<S>>;
 /// the external force on body k, and \f$\tau_s\f$ the spring and damper force.
 /// Parts the scene does not use are skipped: no gravity, no external forces (\p f_ext
 /// empty), no velocity terms at rest, no springs.
-/// \p T must have size nv; nothing is allocated.
+/// \p T must have size nv; nothing is allocated. (The spatial vectors are handled as their
+/// angular and linear 3-vectors, which keeps them in registers.)
 template <class S>
 void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& beta_dot,
                       const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, VecX<S>& T) {
   const bool moving = !x.beta.isZero(0);
   // Base to tip, in one pass: phi(k+1,k), V(k), a(k), alpha(k) (the scatter recursions of
-  // update_phi(), update_velocities() and update_accelerations(), fused).
-  VelocityT<S> V_parent;
-  AccelerationT<S> alpha_parent =
-      m.has_gravity() ? gravity_base_acceleration(m) : AccelerationT<S>();
+  // update_phi(), update_velocities() and update_accelerations(), fused), and the body's own
+  // force M(k) alpha(k) + b(k) into ws.f.
+  const Vec3<S> zero = Vec3<S>::Zero();
+  Vec3<S> wp = zero, vp = zero, dwp = zero, dvp = zero;  // V(k+1), alpha(k+1)
+  if (m.has_gravity()) dvp = gravity_base_acceleration(m).linear();
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
     const S* th = x.theta.data() + B.q_offset;
-    ws.phi[k - 1] = PhiT<S>(B.placement * B.hinge.transform(th));
+    ws.phi[k - 1] = joint_phi(B, th);
     const PhiT<S>& phi = ws.phi[k - 1];
-    AccelerationT<S> alpha = phi.transpose_apply(alpha_parent);
-    alpha += AccelerationT<S>(B.hinge.H_star_times(th, beta_dot.data() + B.v_offset).vector());
+    // alpha(k) = phi*(k+1,k) alpha(k+1) + H*(k) beta_dot(k) + a(k)
+    Vec3<S> dw, dv, hw, hv;
+    detail::transpose_apply(phi, dwp, dvp, dw, dv);
+    detail::hinge_rate(B.hinge, th, beta_dot.data() + B.v_offset, hw, hv);
+    dw += hw;
+    dv += hv;
+    Vec3<S> w = zero, v = zero, a_w = zero, a_v = zero;
     if (moving) {
       const S* be = x.beta.data() + B.v_offset;
-      const VelocityT<S> dV = B.hinge.H_star_times(th, be);
-      const VelocityT<S> V = phi.transpose_apply(V_parent) + dV;
-      const AccelerationT<S> a =
-          coriolis_term(phi, V_parent, V, dV, B.hinge.H_star_dot_times(th, be));
-      alpha += a;
-      ws.V[k - 1] = V;
-      ws.a[k - 1] = a;
-      V_parent = V;
-    } else {
-      ws.V[k - 1] = VelocityT<S>();
-      ws.a[k - 1] = AccelerationT<S>();
+      detail::hinge_rate(B.hinge, th, be, hw, hv);
+      detail::velocity_and_coriolis(phi, wp, vp, hw, hv, w, v, a_w, a_v);
+      if (B.hinge.type == HingeType::Universal) {
+        const AccelerationT<S> Hdot_beta = B.hinge.H_star_dot_times(th, be);
+        a_w += Hdot_beta.angular();
+        a_v += Hdot_beta.linear();
+      }
+      dw += a_w;
+      dv += a_v;
     }
-    ws.alpha[k - 1] = alpha;
-    alpha_parent = alpha;
+    ws.V[k - 1] = VelocityT<S>(w, v);
+    ws.a[k - 1] = AccelerationT<S>(a_w, a_v);
+    ws.alpha[k - 1] = AccelerationT<S>(dw, dv);
+    Vec3<S> N, F;
+    detail::body_force(B.M, w, dw, dv, moving, N, F);
+    if (!f_ext.empty()) N -= f_ext[k - 1].angular(), F -= f_ext[k - 1].linear();
+    ws.f[k - 1] = ForceT<S>(N, F);
+    wp = w, vp = v, dwp = dw, dvp = dv;
   }
   // Tip to base: the gather recursion for f(k) and T(k).
+  Vec3<S> N = zero, F = zero;  // f(k-1)
   for (int k = 1; k <= m.n(); ++k) {
     const BodyT<S>& B = m.body(k);
-    ForceT<S> f = B.M * ws.alpha[k - 1];
-    if (moving) f += gyroscopic_force(B.M, ws.V[k - 1]);
-    if (!f_ext.empty()) f -= f_ext[k - 1];
-    if (k > 1) f += ws.phi[k - 2].apply(ws.f[k - 2]);
-    ws.f[k - 1] = f;
+    Vec3<S> Nk = ws.f[k - 1].angular(), Fk = ws.f[k - 1].linear();
+    if (k > 1) detail::add_apply(ws.phi[k - 2], N, F, Nk, Fk);
+    ws.f[k - 1] = ForceT<S>(Nk, Fk);
+    N = Nk, F = Fk;
     S* Tk = T.data() + B.v_offset;
-    B.hinge.H_times(x.theta.data() + B.q_offset, f, Tk);
+    if (B.hinge.type == HingeType::Revolute)
+      Tk[0] = B.hinge.axis.dot(Nk);
+    else
+      B.hinge.H_times(x.theta.data() + B.q_offset, ws.f[k - 1], Tk);
     if (B.stiffness != S(0) || B.damping != S(0)) {
       S tau[6] = {0, 0, 0, 0, 0, 0};
       add_spring_force(B, x.theta.data() + B.q_offset, x.beta.data() + B.v_offset, tau);

@@ -2,17 +2,66 @@
 /// Serial-chain kinematics: the O(N) scatter recursions, base to tip (lesson 3).
 #pragma once
 
+#include <cmath>
+
 #include "soa/chain/workspace.hpp"
 #include "soa/spatial_cross.hpp"
+#include "soa/tilde.hpp"
 
 namespace soa {
 
-/// \f$\phi(k+1,k) = {}^{O_{k+1}}T_{O_k^+}\; {}^{O_k^+}T_{O_k}(\theta(k))\f$ for every body.
+namespace detail {
+
+/// \f$R^* x\f$ as three column dot products.
+template <class S>
+EIGEN_ALWAYS_INLINE Vec3<S> transpose_times(const Mat3<S>& R, const Vec3<S>& x) {
+  return Vec3<S>(R.col(0).dot(x), R.col(1).dot(x), R.col(2).dot(x));
+}
+
+/// \f$R_p\, e^{\theta \tilde a}\f$ for a unit axis \f$a\f$, by Rodrigues (lesson 1):
+/// \f$e^{\theta\tilde a} = c I + s\tilde a + (1 - c)\, a a^*\f$. About a coordinate axis
+/// \f$\pm e_i\f$ only two columns of \f$R_p\f$ turn: with \f$(i, j, m)\f$ cyclic,
+/// \f$c_j' = c\, c_j + s\, c_m\f$ and \f$c_m' = c\, c_m - s\, c_j\f$ (\f$s\f$ taking the
+/// sign of the axis).
+template <class S>
+EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& a, S theta) {
+  using std::abs;
+  using std::cos;
+  using std::sin;
+  const S c = cos(theta), s = sin(theta);
+  const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;
+  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
+  if (a[j] == S(0) && a[m] == S(0) && abs(a[i]) == S(1)) {
+    const S si = a[i] * s;
+    Mat3<S> R;
+    R.col(i) = Rp.col(i);
+    R.col(j) = c * Rp.col(j) + si * Rp.col(m);
+    R.col(m) = c * Rp.col(m) - si * Rp.col(j);
+    return R;
+  }
+  Mat3<S> E = (S(1) - c) * a * a.transpose() + s * tilde(a);
+  E.diagonal().array() += c;
+  return Rp * E;
+}
+
+}  // namespace detail
+
+/// \f$\phi(k+1,k) = {}^{O_{k+1}}T_{O_k^+}\; {}^{O_k^+}T_{O_k}(\theta(k))\f$ of body k (slides
+/// 25-27: \f$R = R_p R_h\f$, \f$l = l_p + R_p l_h\f$); a revolute hinge has \f$l_h = 0\f$.
+template <class S>
+EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta) {
+  if (B.hinge.type == HingeType::Revolute)
+    return PhiT<S>(detail::rotate_about_axis(B.placement.R(), B.hinge.axis, theta[0]),
+                   B.placement.l());
+  return PhiT<S>(B.placement * B.hinge.transform(theta));
+}
+
+/// \f$\phi(k+1,k)\f$ for every body (joint_phi()).
 template <class S>
 void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
-    ws.phi[k - 1] = PhiT<S>(B.placement * B.hinge.transform(theta.data() + B.q_offset));
+    ws.phi[k - 1] = joint_phi(B, theta.data() + B.q_offset);
   }
 }
 
@@ -45,6 +94,65 @@ AccelerationT<S> coriolis_term(const PhiT<S>& phi, const VelocityT<S>& V_parent,
   const Vec3<S> wpvp = phi.R().transpose() * wp.cross(vp);
   return cross(V, dV) + Hdot_beta + AccelerationT<S>(Vec3<S>::Zero(), w.cross(v) - wpvp);
 }
+
+namespace detail {
+
+/// \f$\Delta_V = H^*(k)\beta(k) = [\Delta_\omega; \Delta_v]\f$ as its two parts; a revolute
+/// hinge gives \f$[\beta a; 0]\f$ without the general switch.
+template <class S>
+EIGEN_ALWAYS_INLINE void hinge_rate(const HingeT<S>& h, const S* theta, const S* beta, Vec3<S>& dw,
+                                    Vec3<S>& dv) {
+  if (h.type == HingeType::Revolute) {
+    dw = beta[0] * h.axis;
+    dv.setZero();
+  } else {
+    const VelocityT<S> dV = h.H_star_times(theta, beta);
+    dw = dV.angular();
+    dv = dV.linear();
+  }
+}
+
+/// \f$\phi^*(x,y) V\f$ on the parts of \f$V = [\omega; v]\f$ (slide 41):
+/// \f$\omega' = R^*\omega\f$, \f$v' = R^*(v + \omega \times l)\f$.
+template <class S>
+EIGEN_ALWAYS_INLINE void transpose_apply(const PhiT<S>& phi, const Vec3<S>& w, const Vec3<S>& v,
+                                         Vec3<S>& w_out, Vec3<S>& v_out) {
+  w_out = transpose_times(phi.R(), w);
+  v_out = transpose_times(phi.R(), Vec3<S>(v + w.cross(phi.l())));
+}
+
+/// \f$\phi(x,y) f\f$ on the parts of \f$f = [N; F]\f$ (slide 49): \f$F' = RF\f$,
+/// \f$N' = RN + l \times F'\f$; added into \p N_out, \p F_out.
+template <class S>
+EIGEN_ALWAYS_INLINE void add_apply(const PhiT<S>& phi, const Vec3<S>& N, const Vec3<S>& F,
+                                   Vec3<S>& N_out, Vec3<S>& F_out) {
+  const Vec3<S> RF = phi.R() * F;
+  N_out += phi.R() * N + phi.l().cross(RF);
+  F_out += RF;
+}
+
+/// \f$V(k) = \phi^*(k+1,k)\,V(k+1) + \Delta_V\f$ (slide 41) and the Coriolis term \f$a(k)\f$
+/// in the coordinate-free form of coriolis_term(), on the parts, with \f$\omega' =
+/// R^*\omega_{k+1}\f$ and \f$u = R^*(\omega_{k+1} \times l)\f$ (so \f$v(k) - v(k+1) = u +
+/// \Delta_v\f$ in \f$O_k\f$ coordinates):
+/// \f[ a(k) = \begin{pmatrix} \omega' \times \Delta_\omega \\ \omega_k \times \Delta_v +
+///     \omega' \times (u + \Delta_v) \end{pmatrix} + \mathring H^*(k)\beta(k), \f]
+/// the last term added by the caller (universal hinges only).
+template <class S>
+EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>& wp,
+                                               const Vec3<S>& vp, const Vec3<S>& dw,
+                                               const Vec3<S>& dv, Vec3<S>& w, Vec3<S>& v,
+                                               Vec3<S>& a_w, Vec3<S>& a_v) {
+  const Mat3<S>& R = phi.R();
+  const Vec3<S> w1 = transpose_times(R, wp);
+  const Vec3<S> u_dv = transpose_times(R, Vec3<S>(wp.cross(phi.l()))) + dv;
+  w = w1 + dw;
+  v = transpose_times(R, vp) + u_dv;
+  a_w = w1.cross(dw);
+  a_v = w.cross(dv) + w1.cross(u_dv);
+}
+
+}  // namespace detail
 
 /// Velocities \f$V(k) = \phi^*(k+1,k)\,V(k+1) + H^*(k)\beta(k)\f$ and Coriolis terms
 /// \f$a(k)\f$, base to tip (\f$V(n+1) = 0\f$). Needs update_phi(). At rest (\f$\beta = 0\f$)

@@ -1,0 +1,93 @@
+/// \file
+/// Lesson 7 exercises: the spatial operators \f$K\f$ and \f$\psi\f$, the innovations
+/// factorization of the mass matrix and its inverse, the diagonal of \f$\mathcal M^{-1}\f$ in
+/// \f$O(N)\f$, and solving \f$\mathcal M y = b\f$ without forming \f$\mathcal M\f$.
+///
+/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k
+/// joins body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's
+/// entries start at `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial stacks have body
+/// k at rows 6(k-1)..6k-1. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ after soa::update_phi
+/// (`.matrix()` the 6x6, `.apply(f)` and `.transpose_apply(a)` without it). From lesson 6,
+/// soa::articulated_inertias fills soa::ArticulatedT: `art.P[k-1]`, `art.D[k-1]`,
+/// `art.D_inv[k-1]`, `art.G[k-1]` (6 x n_k) and `art.tau_bar(m, theta, k)`. From lessons 3-4,
+/// soa::OperatorsT::build gives the dense \f$\mathcal E_\phi\f$, \f$\phi\f$, \f$H\f$, \f$M\f$.
+/// \f$H^*(k)\f$ is the 6 x n_k matrix `m.body(k).hinge.H_star(theta + q_offset)`.
+///
+/// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
+/// and run `make exercises`. Do not call the library function an exercise reproduces (named
+/// in its statement); the other library functions are yours to use.
+#pragma once
+
+#include <vector>
+
+#include "soa/chain.hpp"
+#include "soa/soa.hpp"
+
+namespace soa::ex07 {
+
+using MatX = soa::MatX<double>;
+using VecX = soa::VecX<double>;
+
+/// The result of exercise 7.1.
+struct KAndPsi {
+  MatX K;    ///< \f$K = \mathcal E_\phi G\f$, 6n x nv
+  MatX psi;  ///< \f$\psi = (I - \mathcal E_\phi\bar\tau)^{-1}\f$, 6n x 6n
+};
+
+/// **Exercise 7.1: the operators \f$K\f$ and \f$\psi\f$.**
+/// For the chain \p m at state \p x, return the dense \f$K = \mathcal E_\phi G\f$ (non-zero
+/// blocks \f$K(k+1,k) = \phi(k+1,k)G(k)\f$ at block row k+1, block column k) and
+/// \f$\psi = (I - \mathcal E_\psi)^{-1}\f$ with \f$\mathcal E_\psi = \mathcal E_\phi\bar\tau\f$
+/// (lesson 7, section 1). The tests check them against the library and check the identity
+/// \f$\phi^{-1} - \psi^{-1} = -KH\f$ with your matrices. Use soa::OperatorsT and
+/// soa::articulated_inertias; do not call soa::InnovationsOperatorsT.
+KAndPsi k_and_psi(const Model& m, const State& x);
+
+/// The result of exercise 7.2.
+struct InnovationsFactor {
+  MatX L;      ///< \f$[I + H\phi K]\f$, nv x nv
+  MatX L_inv;  ///< \f$[I - H\psi K]\f$, nv x nv
+  MatX D;      ///< \f$D = \mathrm{diag}(D(k))\f$, nv x nv
+};
+
+/// **Exercise 7.2: the innovations factor and its inverse.**
+/// Return \f$L = I + H\phi K\f$, its inverse in closed form \f$L^{-1} = I - H\psi K\f$ (no
+/// matrix inversion other than \f$\psi\f$'s), and \f$D\f$ (lesson 7, sections 3-4). The tests
+/// check \f$\mathcal M = L D L^*\f$ against the mass matrix of lesson 5, that \f$L\f$ is
+/// block lower triangular with identity diagonal blocks, and \f$L L^{-1} = I\f$. Do not call
+/// soa::InnovationsOperatorsT.
+InnovationsFactor innovations_factor(const Model& m, const State& x);
+
+/// **Exercise 7.3: the diagonal blocks of \f$\mathcal M^{-1}\f$ in \f$O(N)\f$.**
+/// From \f$\mathcal M^{-1} = [I - H\psi K]^* D^{-1} [I - H\psi K]\f$, the diagonal block of
+/// hinge k is (\f$H\psi K\f$ is strictly lower triangular)
+/// \f[ \mathcal M^{-1}(k,k) = D^{-1}(k) + G^*(k)\,\phi^*(k+1,k)\,\Upsilon(k+1)\,
+///     \phi(k+1,k)\,G(k), \f]
+/// where \f$\Upsilon(k)\f$, the diagonal blocks of \f$\psi^*H^*D^{-1}H\psi\f$, follow base to
+/// tip from \f$\Upsilon(n+1) = 0\f$:
+/// \f[ \Upsilon(k) = \psi^*(k+1,k)\,\Upsilon(k+1)\,\psi(k+1,k) + H^*(k)D^{-1}(k)H(k), \qquad
+///     \psi(k+1,k) = \phi(k+1,k)\,\bar\tau(k) . \f]
+/// Return the n_k x n_k blocks \f$\mathcal M^{-1}(k,k)\f$ at entry k−1 (size n), in O(n):
+/// one Riccati pass tip to base, one pass base to tip. Do not call
+/// soa::mass_matrix_inverse, soa::InnovationsOperatorsT or soa::OperatorsT.
+std::vector<MatX> minv_diagonal(const Model& m, const State& x);
+
+/// **Exercise 7.4: solve \f$\mathcal M y = b\f$ with the factorization.**
+/// Return \f$y = \mathcal M^{-1} b = [I - H\psi K]^* D^{-1} [I - H\psi K]\, b\f$ by the
+/// recursions of lesson 7, section 4, in O(n), without forming \f$\mathcal M\f$ or any
+/// dense operator: tip to base \f$z(k) = \phi(k,k-1)z^+(k-1)\f$, \f$\epsilon(k) = b(k) -
+/// H(k)z(k)\f$, \f$\nu(k) = D^{-1}(k)\epsilon(k)\f$, \f$z^+(k) = z(k) + G(k)\epsilon(k)\f$;
+/// base to tip \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$, \f$y(k) = \nu(k) -
+/// G^*(k)\alpha^+(k)\f$, \f$\alpha(k) = \alpha^+(k) + H^*(k)y(k)\f$. Do not call
+/// soa::mass_matrix_inverse, soa::forward_dynamics, soa::mass_matrix_crb, soa::OperatorsT
+/// or soa::InnovationsOperatorsT.
+VecX solve(const Model& m, const State& x, const VecX& b);
+
+/// **Exercise 7.5: the determinant of the mass matrix.**
+/// \f$[I + H\phi K]\f$ is block unit lower triangular, so \f$\det\mathcal M = \prod_k \det
+/// D(k)\f$ (lesson 7, section 3). Return \f$\log\det\mathcal M = \sum_k \log\det D(k)\f$
+/// (the logarithm: the product over- or underflows on long chains), without forming
+/// \f$\mathcal M\f$.
+double log_det_mass_matrix(const Model& m, const State& x);
+
+}  // namespace soa::ex07

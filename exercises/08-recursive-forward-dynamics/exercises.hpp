@@ -1,0 +1,99 @@
+/// \file
+/// Lesson 8 exercises: the sweeps of the O(N) articulated body forward dynamics, the
+/// inter-body forces, and a simulation step.
+///
+/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k
+/// joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$, \f$T\f$ are stacked tip first (body
+/// k's entries start at `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial vectors are
+/// angular part first; body k's quantities are at its hinge frame \f$O_k\f$, in \f$O_k\f$
+/// coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative to the inertial
+/// frame), so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.apply(f)` is \f$\phi f\f$,
+/// `phi.transpose_apply(V)` is \f$\phi^* V\f$, `phi.matrix()` the 6x6 matrix. \f$H^*(k)\f$ is
+/// the 6 x n_k matrix `m.body(k).hinge.H_star(theta + q_offset)`, \f$H(k)\f$ its transpose.
+/// soa::update_phi fills `ws.phi`, soa::update_velocities fills `ws.V` and the Coriolis
+/// terms `ws.a`; soa::gyroscopic_force gives the gyroscopic term of \f$b(k)\f$;
+/// soa::articulated_inertias gives \f$P, D, G, P^+\f$ (lesson 6).
+///
+/// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
+/// and run `make exercises`. Do not call the library function an exercise reproduces (named
+/// in its statement); the other library functions are yours to use.
+#pragma once
+
+#include <vector>
+
+#include "soa/chain.hpp"
+#include "soa/soa.hpp"
+
+namespace soa::ex08 {
+
+using Vec6 = soa::Vec6<double>;
+
+/// The result of exercise 8.1, per body k at entry k−1.
+struct TipToBase {
+  std::vector<Vec6> z;       ///< \f$z(k)\f$
+  std::vector<Vec6> z_plus;  ///< \f$z^+(k)\f$
+  VecX<double> eps;          ///< \f$\epsilon(k)\f$ (a scalar per revolute hinge), size n
+  VecX<double> nu;           ///< \f$\nu(k)\f$, size n
+};
+
+/// **Exercise 8.1: the tip-to-base sweep of a revolute chain.**
+/// Every hinge of \p m is revolute (\f$H^*(k) = [a_k; 0]\f$, \f$a_k\f$ =
+/// `m.body(k).hinge.axis`); no gravity, no external forces, no springs. At the state \p x
+/// with hinge torques \p T, return for k = 1 (tip) ... n (lesson 8, section 2)
+/// \f[ z(k) = \phi(k,k-1)\,z^+(k-1) + P(k)\,a(k) + b(k), \quad \epsilon(k) = T(k) - H(k)z(k),
+///     \quad \nu(k) = \epsilon(k)/D(k), \quad z^+(k) = z(k) + G(k)\,\epsilon(k), \f]
+/// with \f$z^+(0) = 0\f$ and \f$b(k)\f$ the gyroscopic term of lesson 2. \f$P, D, G\f$ from
+/// soa::articulated_inertias and \f$a(k)\f$ from soa::update_velocities are allowed.
+/// Do not call soa::forward_dynamics.
+TipToBase tip_to_base(const Model& m, const State& x, const VecX<double>& T);
+
+/// **Exercise 8.2: the base-to-tip sweep.**
+/// Hinges of any type. Given `ws.phi` (\f$\phi(k+1,k)\f$) and `ws.a` (\f$a(k)\f$) filled,
+/// the gains \f$G(k)\f$ = `art.G[k-1]` (6 x n_k), \f$\nu(k)\f$ = `nu[k-1]` (n_k entries)
+/// and the base acceleration \f$\alpha(n+1)\f$ = \p alpha_base (\f$[0; -g]\f$ for gravity,
+/// in inertial coordinates), return \f$\dot\beta\f$ (size nv, tip first) and fill \p alpha
+/// (size n) with \f$\alpha(k)\f$, for k = n ... 1 (lesson 8, section 2):
+/// \f[ \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1), \quad \dot\beta(k) = \nu(k) -
+///     G^*(k)\,\alpha^+(k), \quad \alpha(k) = \alpha^+(k) + H^*(k)\dot\beta(k) + a(k). \f]
+/// Do not call soa::forward_dynamics.
+VecX<double> base_to_tip(const Model& m, const State& x, const Workspace& ws,
+                         const Articulated& art, const std::vector<VecX<double>>& nu,
+                         const Acceleration& alpha_base, std::vector<Acceleration>& alpha);
+
+/// **Exercise 8.3: forward dynamics of a chain of one-degree-of-freedom hinges.**
+/// Every hinge of \p m is revolute, prismatic or helical: \f$H^*(k)\f$ is one 6-vector
+/// \f$s_k\f$ and \f$D(k) = s_k^* P(k) s_k\f$ a scalar. With gravity (`m.gravity`, as the base
+/// acceleration \f$[0; -g]\f$) and the external forces \p f_ext (empty: none; else entry
+/// k−1 acts on body k at \f$O_k\f$, and \f$b(k) = b_{\rm gyro}(k) - f_{\rm ext}(k)\f$), no
+/// springs, return \f$\dot\beta = \mathcal M^{-1}(T - \mathcal C)\f$ by the three sweeps of
+/// lesson 8, running the Riccati recursion of lesson 6 yourself in the tip-to-base sweep:
+/// \f[ P(k) = \phi(k,k-1)P^+(k-1)\phi^*(k,k-1) + M(k), \quad D = s^*Ps, \quad G = Ps/D,
+///     \quad P^+ = P - G D G^* . \f]
+/// Do not call soa::forward_dynamics, soa::articulated_inertias or soa::riccati_step.
+VecX<double> forward_dynamics_1dof(const Model& m, const State& x, const VecX<double>& T,
+                                   const ExternalForces<double>& f_ext);
+
+/// **Exercise 8.4: the inter-body forces.**
+/// \p fd holds the results of soa::forward_dynamics at some state \p x: \f$P^+(k)\f$ =
+/// `fd.art.P_plus[k-1]`, \f$\alpha^+(k)\f$ = `fd.alpha_plus[k-1]`, \f$z^+(k)\f$ =
+/// `fd.z_plus[k-1]`. Return the spatial force \f$f(k)\f$ that body k+1 exerts on body k
+/// through hinge k (lesson 8, sections 2-3),
+/// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \f]
+/// and fill \p T_hinge (size nv) with \f$H(k)f(k)\f$, the part of it along the hinge's free
+/// directions (it equals \f$T + \tau_s\f$, the hinge forces with the springs' force).
+/// Do not call soa::inverse_dynamics.
+std::vector<Force> inter_body_forces(const Model& m, const State& x, const ForwardDynamics& fd,
+                                     VecX<double>& T_hinge);
+
+/// **Exercise 8.5: a simulation step.**
+/// Every hinge of \p m has \f$\dot\theta = \beta\f$ (revolute, prismatic, helical,
+/// universal). Return the state after one step \p h of the classical Runge–Kutta method
+/// (RK4) for \f$\dot\theta = \beta\f$, \f$\dot\beta = \mathrm{FD}(\theta, \beta, T)\f$ with
+/// the hinge forces \p T held constant and no external forces (lesson 8, section 7):
+/// \f[ k_1 = F(y), \; k_2 = F(y + \tfrac h2 k_1), \; k_3 = F(y + \tfrac h2 k_2), \;
+///     k_4 = F(y + h k_3), \quad y' = y + \tfrac h6 (k_1 + 2k_2 + 2k_3 + k_4), \f]
+/// \f$y = (\theta, \beta)\f$, \f$F(y) = (\beta, \mathrm{FD}(\theta, \beta, T))\f$.
+/// soa::forward_dynamics is yours to use here.
+State rk4_step(const Model& m, const State& x, const VecX<double>& T, double h);
+
+}  // namespace soa::ex08

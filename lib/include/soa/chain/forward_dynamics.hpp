@@ -1,0 +1,186 @@
+/// \file
+/// O(N) articulated body forward dynamics of a serial chain (lesson 8).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "soa/chain/articulated.hpp"
+
+namespace soa {
+
+/// An \f$n_k\f$-vector of one hinge (at most 6, no heap).
+template <class S>
+using HingeVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1>;
+
+/// Per-body results of the forward dynamics, sized once for a model (nothing is allocated
+/// per call). `art` holds \f$P, P^+, D, G\f$ of the Riccati recursion (lesson 6).
+template <class S>
+struct ForwardDynamicsT {
+  explicit ForwardDynamicsT(const ModelT<S>& m)
+      : art(m), z(m.n()), z_plus(m.n()), nu(m.n()), alpha_plus(m.n()) {}
+  ArticulatedT<S> art;
+  std::vector<ForceT<S>> z;                  ///< \f$z(k)\f$
+  std::vector<ForceT<S>> z_plus;             ///< \f$z^+(k) = z(k) + G(k)\,\epsilon(k)\f$
+  std::vector<HingeVector<S>> nu;            ///< \f$\nu(k) = D^{-1}(k)\,\epsilon(k)\f$
+  std::vector<AccelerationT<S>> alpha_plus;  ///< \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$
+};
+using ForwardDynamics = ForwardDynamicsT<double>;
+
+/// Reports what made a forward dynamics result non-finite: a non-finite input (naming it
+/// and, for hinge quantities, the body), else the first body whose \f$\dot\beta\f$ is not.
+template <class S>
+[[noreturn]] void throw_non_finite(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
+                                   const ExternalForces<S>& f_ext, const VecX<S>& beta_dot) {
+  auto where = [&](const VecX<S>& v, bool q) -> std::string {
+    for (int k = 1; k <= m.n(); ++k) {
+      const BodyT<S>& B = m.body(k);
+      const int off = q ? B.q_offset : B.v_offset, len = q ? B.hinge.nq() : B.hinge.nv();
+      if (!v.segment(off, len).allFinite()) return "body '" + B.name + "'";
+    }
+    return "a body";
+  };
+  if (!x.theta.allFinite())
+    throw Error("forward dynamics: theta of " + where(x.theta, true) + " is not finite");
+  if (!x.beta.allFinite())
+    throw Error("forward dynamics: beta of " + where(x.beta, false) + " is not finite");
+  if (!T.allFinite())
+    throw Error("forward dynamics: the hinge force T of " + where(T, false) + " is not finite");
+  for (std::size_t i = 0; i < f_ext.size(); ++i)
+    if (!f_ext[i].vector().allFinite())
+      throw Error("forward dynamics: the external force on body '" + m.body(int(i) + 1).name +
+                  "' is not finite");
+  throw Error("forward dynamics: beta_dot of " + where(beta_dot, false) +
+              " is not finite (overflow: check the scale of masses, forces and rates)");
+}
+
+/// The articulated body forward dynamics (lesson 8), O(N): the accelerations
+/// \f$\dot\beta = \mathcal M^{-1}(T - \mathcal C)\f$ without forming \f$\mathcal M\f$.
+///
+/// Base to tip (lesson 3): \f$\phi(k+1,k)\f$, \f$V(k)\f$, \f$a(k)\f$ and the gyroscopic
+/// term less the external force, \f$b(k)\f$. Tip to base, with the Riccati recursion of
+/// lesson 6:
+/// \f[ z(k) = \phi(k,k-1)\,z^+(k-1) + P(k)\,a(k) + b(k), \quad
+///     \epsilon(k) = T(k) - H(k)\,z(k), \quad \nu(k) = D^{-1}(k)\,\epsilon(k), \quad
+///     z^+(k) = z(k) + G(k)\,\epsilon(k). \f]
+/// Base to tip, from \f$\alpha(n+1) = [0; -g]\f$:
+/// \f[ \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1), \quad
+///     \dot\beta(k) = \nu(k) - G^*(k)\,\alpha^+(k), \quad
+///     \alpha(k) = \alpha^+(k) + H^*(k)\,\dot\beta(k) + a(k). \f]
+/// Springs and dampers add their hinge force to \f$T\f$. Parts the scene does not use are
+/// skipped (no velocity terms at rest, no gravity, no external forces when \p f_ext is
+/// empty). A singular \f$D(k)\f$ stops with the message of articulated_inertias(); a
+/// non-finite input or result with soa::Error naming it. Fills ws.phi, V, a, b, alpha.
+template <class S>
+void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
+                      const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, ForwardDynamicsT<S>& fd,
+                      VecX<S>& beta_dot) {
+  const int n = m.n();
+  // A non-finite theta would stop the joint transforms with a message that names no body.
+  if (!x.theta.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
+  const bool moving = !x.beta.isZero(0);
+  const Vec3<S> zero = Vec3<S>::Zero();
+  // Base to tip: phi(k+1,k), V(k), a(k), b(k) (spatial vectors as their 3-vector parts).
+  Vec3<S> wp = zero, vp = zero;  // V(k+1)
+  for (int k = n; k >= 1; --k) {
+    const BodyT<S>& B = m.body(k);
+    const S* th = x.theta.data() + B.q_offset;
+    ws.phi[k - 1] = joint_phi(B, th);
+    Vec3<S> w = zero, v = zero, a_w = zero, a_v = zero, N = zero, F = zero;
+    if (moving) {
+      const S* be = x.beta.data() + B.v_offset;
+      Vec3<S> dw, dv;
+      detail::hinge_rate(B.hinge, th, be, dw, dv);
+      detail::velocity_and_coriolis(ws.phi[k - 1], wp, vp, dw, dv, w, v, a_w, a_v);
+      if (B.hinge.type == HingeType::Universal) {
+        const AccelerationT<S> Hdot_beta = B.hinge.H_star_dot_times(th, be);
+        a_w += Hdot_beta.angular();
+        a_v += Hdot_beta.linear();
+      }
+      // b(k) = [w x J w; w x (w x h)] (lesson 2)
+      N = w.cross(B.M.J() * w);
+      F = w.cross(w.cross(B.M.h()));
+      wp = w, vp = v;
+    }
+    if (!f_ext.empty()) N -= f_ext[k - 1].angular(), F -= f_ext[k - 1].linear();
+    ws.V[k - 1] = VelocityT<S>(w, v);
+    ws.a[k - 1] = AccelerationT<S>(a_w, a_v);
+    ws.b[k - 1] = ForceT<S>(N, F);
+  }
+  // Tip to base: P, D, G, P+ (riccati_step()) and z, epsilon, nu, z+.
+  ArticulatedT<S>& art = fd.art;
+  CompositeTraceT<S> guard;
+  Vec3<S> Np = zero, Fp = zero;  // z+(k-1)
+  for (int k = 1; k <= n; ++k) {
+    const BodyT<S>& B = m.body(k);
+    const S* th = x.theta.data() + B.q_offset;
+    const S d_min = riccati_step(m, x, ws, k, art, guard);
+    if (!std::isfinite(double(d_min))) throw_non_finite(m, x, T, f_ext, beta_dot);
+    // z(k) = phi(k,k-1) z+(k-1) + P(k) a(k) + b(k)
+    Vec3<S> N = ws.b[k - 1].angular(), F = ws.b[k - 1].linear();
+    if (k > 1) detail::add_apply(ws.phi[k - 2], Np, Fp, N, F);
+    if (moving) {
+      const Mat6<S>& P = art.P[k - 1];
+      const Vec3<S> a_w = ws.a[k - 1].angular(), a_v = ws.a[k - 1].linear();
+      N += P.template topLeftCorner<3, 3>() * a_w + P.template topRightCorner<3, 3>() * a_v;
+      F += P.template bottomLeftCorner<3, 3>() * a_w + P.template bottomRightCorner<3, 3>() * a_v;
+    }
+    fd.z[k - 1] = ForceT<S>(N, F);
+    // epsilon(k) = T(k) + spring force - H(k) z(k)
+    const int nv = B.hinge.nv();
+    S e[6], Hz[6];
+    for (int i = 0; i < nv; ++i) e[i] = T[B.v_offset + i];
+    if (B.stiffness != S(0) || B.damping != S(0))
+      add_spring_force(B, th, x.beta.data() + B.v_offset, e);
+    if (B.hinge.type == HingeType::Revolute)
+      Hz[0] = B.hinge.axis.dot(N);
+    else
+      B.hinge.H_times(th, fd.z[k - 1], Hz);
+    for (int i = 0; i < nv; ++i) e[i] -= Hz[i];
+    // nu(k) = D^{-1}(k) epsilon(k), z+(k) = z(k) + G(k) epsilon(k)
+    const JointMap<S>& G = art.G[k - 1];
+    if (nv == 1) {
+      fd.nu[k - 1].setConstant(1, art.D_inv[k - 1](0, 0) * e[0]);
+      N += G.col(0).template head<3>() * e[0];
+      F += G.col(0).template tail<3>() * e[0];
+    } else {
+      const Eigen::Map<const HingeVector<S>> eps(e, nv);
+      fd.nu[k - 1] = art.D_inv[k - 1] * eps;
+      const Vec6<S> Ge = G * eps;
+      N += Ge.template head<3>();
+      F += Ge.template tail<3>();
+    }
+    fd.z_plus[k - 1] = ForceT<S>(N, F);
+    Np = N, Fp = F;
+  }
+  // Base to tip: alpha+(k), beta_dot(k), alpha(k).
+  Vec3<S> dwp = zero, dvp = zero;  // alpha(k+1)
+  if (m.has_gravity()) dvp = gravity_base_acceleration(m).linear();
+  for (int k = n; k >= 1; --k) {
+    const BodyT<S>& B = m.body(k);
+    const S* th = x.theta.data() + B.q_offset;
+    // alpha+(k) = phi*(k+1,k) alpha(k+1)
+    Vec3<S> dw, dv;
+    detail::transpose_apply(ws.phi[k - 1], dwp, dvp, dw, dv);
+    fd.alpha_plus[k - 1] = AccelerationT<S>(dw, dv);
+    // beta_dot(k) = nu(k) - G*(k) alpha+(k)
+    S* bd = beta_dot.data() + B.v_offset;
+    const int nv = B.hinge.nv();
+    const JointMap<S>& G = art.G[k - 1];
+    for (int i = 0; i < nv; ++i)
+      bd[i] = fd.nu[k - 1][i] -
+              (G.col(i).template head<3>().dot(dw) + G.col(i).template tail<3>().dot(dv));
+    // alpha(k) = alpha+(k) + H*(k) beta_dot(k) + a(k)
+    Vec3<S> hw, hv;
+    detail::hinge_rate(B.hinge, th, bd, hw, hv);
+    dw += hw;
+    dv += hv;
+    if (moving) dw += ws.a[k - 1].angular(), dv += ws.a[k - 1].linear();
+    ws.alpha[k - 1] = AccelerationT<S>(dw, dv);
+    dwp = dw, dvp = dv;
+  }
+  if (!beta_dot.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
+}
+
+}  // namespace soa

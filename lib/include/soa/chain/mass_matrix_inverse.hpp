@@ -1,0 +1,232 @@
+/// \file
+/// The inverse of the mass matrix in O(N^2), without forming the mass matrix (lesson 7).
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "soa/chain/articulated.hpp"
+
+namespace soa {
+
+/// Workspace of mass_matrix_inverse(): the Riccati results and two nv x 6 blocks, sized once.
+template <class S>
+struct MassMatrixInverseT {
+  explicit MassMatrixInverseT(const ModelT<S>& m)
+      : art(m), Y(m.nv(), 6), Z(m.nv(), 6), E(m.nv(), 6) {}
+  ArticulatedT<S> art;
+  /// Columns of the tip-to-base pass, stored transposed: row j of \p Y is \f$z^{+*}\f$ for
+  /// the unit hinge force \f$T = e_j\f$ (an \f$n_v \times 6\f$ block, no 6x6 operator).
+  MatX<S> Y, Z, E;
+};
+using MassMatrixInverse = MassMatrixInverseT<double>;
+
+namespace detail {
+
+/// Rows of \p X (each the transpose of a spatial force) moved by \f$\phi = (R, l)\f$:
+/// \f$N' = RN + l \times RF,\ F' = RF\f$, written into \p out (same rows). Column
+/// operations only, so that every line is a vectorized loop over the rows.
+template <class S, class In, class Out>
+void apply_phi_rows(const PhiT<S>& phi, const In& X, Out& out) {
+  const Mat3<S>& R = phi.R();
+  const Vec3<S>& l = phi.l();
+  for (int i = 0; i < 3; ++i) {
+    out.col(i) = R(i, 0) * X.col(0) + R(i, 1) * X.col(1) + R(i, 2) * X.col(2);
+    out.col(3 + i) = R(i, 0) * X.col(3) + R(i, 1) * X.col(4) + R(i, 2) * X.col(5);
+  }
+  // N' += l x F' = (l1 F2 - l2 F1, l2 F0 - l0 F2, l0 F1 - l1 F0)
+  out.col(0) += l[1] * out.col(5) - l[2] * out.col(4);
+  out.col(1) += l[2] * out.col(3) - l[0] * out.col(5);
+  out.col(2) += l[0] * out.col(4) - l[1] * out.col(3);
+}
+
+/// Rows of \p X (each the transpose of a spatial acceleration) moved by \f$\phi^* =
+/// (R, l)^*\f$: \f$\omega' = R^*\omega,\ v' = R^*(v + \omega \times l)\f$, written into
+/// \p out.
+template <class S, class In, class Out>
+void transpose_apply_phi_rows(const PhiT<S>& phi, In& X, Out& out) {
+  const Mat3<S>& R = phi.R();
+  const Vec3<S>& l = phi.l();
+  // v += w x l = (w1 l2 - w2 l1, w2 l0 - w0 l2, w0 l1 - w1 l0)
+  X.col(3) += l[2] * X.col(1) - l[1] * X.col(2);
+  X.col(4) += l[0] * X.col(2) - l[2] * X.col(0);
+  X.col(5) += l[1] * X.col(0) - l[0] * X.col(1);
+  for (int i = 0; i < 3; ++i) {
+    out.col(i) = R(0, i) * X.col(0) + R(1, i) * X.col(1) + R(2, i) * X.col(2);
+    out.col(3 + i) = R(0, i) * X.col(3) + R(1, i) * X.col(4) + R(2, i) * X.col(5);
+  }
+}
+
+/// One-degree-of-freedom hinge k, tip to base, on rows \f$[0, c)\f$ of \f$Y = Z^{+*}\f$ (in
+/// place) and of column \p M of \f$\mathcal M^{-1}\f$, row by row (each row is one unit hinge
+/// force, so the loop vectorizes over rows): with \f$s = H^*(k)\f$, \f$g = G(k)\f$,
+/// \f$Z = \phi(k,k-1) Z^+\f$ (\f$F' = RF,\ N' = RN + l \times F'\f$), \f$\epsilon = -s^* Z\f$,
+/// \f$\nu = D^{-1}\epsilon\f$, \f$Z^+ = Z + g\,\epsilon\f$.
+template <class S>
+void tip_to_base_rows_1dof(int c, const PhiT<S>& phi, const Vec6<S>& s, S D_inv, const Vec6<S>& g,
+                           S* __restrict y0, S* __restrict y1, S* __restrict y2, S* __restrict y3,
+                           S* __restrict y4, S* __restrict y5, S* __restrict M) {
+  const Mat3<S>& R = phi.R();
+  const Vec3<S>& l = phi.l();
+  for (int r = 0; r < c; ++r) {
+    const S F0 = R(0, 0) * y3[r] + R(0, 1) * y4[r] + R(0, 2) * y5[r];
+    const S F1 = R(1, 0) * y3[r] + R(1, 1) * y4[r] + R(1, 2) * y5[r];
+    const S F2 = R(2, 0) * y3[r] + R(2, 1) * y4[r] + R(2, 2) * y5[r];
+    const S N0 = R(0, 0) * y0[r] + R(0, 1) * y1[r] + R(0, 2) * y2[r] + (l[1] * F2 - l[2] * F1);
+    const S N1 = R(1, 0) * y0[r] + R(1, 1) * y1[r] + R(1, 2) * y2[r] + (l[2] * F0 - l[0] * F2);
+    const S N2 = R(2, 0) * y0[r] + R(2, 1) * y1[r] + R(2, 2) * y2[r] + (l[0] * F1 - l[1] * F0);
+    const S e = -(s[0] * N0 + s[1] * N1 + s[2] * N2 + s[3] * F0 + s[4] * F1 + s[5] * F2);
+    M[r] = D_inv * e;
+    y0[r] = N0 + g[0] * e;
+    y1[r] = N1 + g[1] * e;
+    y2[r] = N2 + g[2] * e;
+    y3[r] = F0 + g[3] * e;
+    y4[r] = F1 + g[4] * e;
+    y5[r] = F2 + g[5] * e;
+  }
+}
+
+/// One-degree-of-freedom hinge k, base to tip, on rows \f$[0, c)\f$ of \f$A^*\f$ (in place)
+/// and of column \p M of \f$\mathcal M^{-1}\f$: \f$A^+ = \phi^*(k+1,k) A\f$ (\f$v' = R^*(v +
+/// \omega \times l),\ \omega' = R^*\omega\f$; \f$A^+ = 0\f$ when \p phi is null, at the
+/// base), \f$\mathcal M^{-1}(k,\cdot) = \nu - g^* A^+\f$, \f$A = A^+ + s\, \mathcal
+/// M^{-1}(k,\cdot)\f$.
+template <class S>
+void base_to_tip_rows_1dof(int c, const PhiT<S>* phi, const Vec6<S>& s, const Vec6<S>& g,
+                           S* __restrict a0, S* __restrict a1, S* __restrict a2, S* __restrict a3,
+                           S* __restrict a4, S* __restrict a5, S* __restrict M) {
+  if (!phi) {
+    for (int r = 0; r < c; ++r) {
+      const S mr = M[r];
+      a0[r] = s[0] * mr, a1[r] = s[1] * mr, a2[r] = s[2] * mr;
+      a3[r] = s[3] * mr, a4[r] = s[4] * mr, a5[r] = s[5] * mr;
+    }
+    return;
+  }
+  const Mat3<S>& R = phi->R();
+  const Vec3<S>& l = phi->l();
+  for (int r = 0; r < c; ++r) {
+    const S w0 = a0[r], w1 = a1[r], w2 = a2[r];
+    const S v0 = a3[r] + (w1 * l[2] - w2 * l[1]);
+    const S v1 = a4[r] + (w2 * l[0] - w0 * l[2]);
+    const S v2 = a5[r] + (w0 * l[1] - w1 * l[0]);
+    const S W0 = R(0, 0) * w0 + R(1, 0) * w1 + R(2, 0) * w2;
+    const S W1 = R(0, 1) * w0 + R(1, 1) * w1 + R(2, 1) * w2;
+    const S W2 = R(0, 2) * w0 + R(1, 2) * w1 + R(2, 2) * w2;
+    const S V0 = R(0, 0) * v0 + R(1, 0) * v1 + R(2, 0) * v2;
+    const S V1 = R(0, 1) * v0 + R(1, 1) * v1 + R(2, 1) * v2;
+    const S V2 = R(0, 2) * v0 + R(1, 2) * v1 + R(2, 2) * v2;
+    const S mr = M[r] - (g[0] * W0 + g[1] * W1 + g[2] * W2 + g[3] * V0 + g[4] * V1 + g[5] * V2);
+    M[r] = mr;
+    a0[r] = W0 + s[0] * mr, a1[r] = W1 + s[1] * mr, a2[r] = W2 + s[2] * mr;
+    a3[r] = V0 + s[3] * mr, a4[r] = V1 + s[4] * mr, a5[r] = V2 + s[5] * mr;
+  }
+}
+
+}  // namespace detail
+
+/// The inverse of the mass matrix (lesson 7), \f$O(N^2)\f$, from the innovations
+/// factorization \f$\mathcal M^{-1} = [I - H\psi K]^* D^{-1} [I - H\psi K]\f$: the forward
+/// dynamics of lesson 8 with the bias terms dropped and all unit hinge forces \f$T = e_j\f$
+/// at once. Tip to base, with the Riccati recursion (riccati_step()):
+/// \f[ Z(k) = \phi(k,k-1) Z^+(k-1), \quad \nu(k) = D^{-1}(k)\,[E_k - H(k) Z(k)], \quad
+///     Z^+(k) = Z(k) + G(k)\,[E_k - H(k) Z(k)] , \f]
+/// where only the columns of the hinges outboard of k are non-zero; base to tip,
+/// \f[ A^+(k) = \phi^*(k+1,k)\,A(k+1), \quad \mathcal M^{-1}(k,\cdot) = \nu(k) - G^*(k)\,A^+(k),
+///     \quad A(k) = A^+(k) + H^*(k)\,\mathcal M^{-1}(k,\cdot), \f]
+/// kept to the columns of hinges k..1 (the rest follow by symmetry). Blocks are stored
+/// transposed (\f$n_v \times 6\f$) so that \f$\phi\f$ acts on contiguous columns. Needs
+/// update_phi(); a singular \f$D(k)\f$ throws as in articulated_inertias().
+template <class S>
+void mass_matrix_inverse(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
+                         MassMatrixInverseT<S>& w, MatX<S>& Minv) {
+  const int n = m.n(), nv = m.nv();
+  Minv.resize(nv, nv);
+  ArticulatedT<S>& art = w.art;
+  CompositeTraceT<S> guard;
+  // Tip to base. Rows [0, c) of Y hold Z+(k-1)^*, c = v_offset(k).
+  for (int k = 1; k <= n; ++k) {
+    const BodyT<S>& B = m.body(k);
+    const S d_min = riccati_step(m, x, ws, k, art, guard);
+    if (!std::isfinite(double(d_min)))
+      throw Error("body '" + B.name + "': articulated inertia D(" + std::to_string(k) +
+                  ") is not finite (check theta and the inertias)");
+    const int c = B.v_offset, nk = B.hinge.nv();
+    if (nk == 1) {  // one row pass (detail::tip_to_base_rows_1dof()), then hinge k's own row
+      const Vec6<S> s = one_dof_map(B.hinge), g = art.G[k - 1].col(0);
+      const S D_inv = art.D_inv[k - 1](0, 0);
+      S* Y = w.Y.data();
+      const Eigen::Index ld = w.Y.rows();
+      S* Mk = Minv.col(B.v_offset).data();
+      if (k > 1)
+        detail::tip_to_base_rows_1dof(c, ws.phi[k - 2], s, D_inv, g, Y, Y + ld, Y + 2 * ld,
+                                      Y + 3 * ld, Y + 4 * ld, Y + 5 * ld, Mk);
+      Mk[c] = D_inv;                                 // epsilon = 1 for T = e_k
+      for (int r = 0; r < 6; ++r) w.Y(c, r) = g[r];  // Z+ = G
+      continue;
+    }
+    auto Z = w.Z.topRows(c);
+    if (k > 1) {
+      auto Yc = w.Y.topRows(c);
+      detail::apply_phi_rows(ws.phi[k - 2], Yc, Z);
+    }
+    // epsilon^* = [E_k - H Z]^*: rows [0, c) are -(Z H^*), rows of hinge k the identity.
+    const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
+    auto E = w.E.topLeftCorner(c + nk, nk);
+    for (int i = 0; i < nk; ++i) {
+      auto Ei = E.col(i).head(c);
+      Ei.setZero();
+      for (int r = 0; r < 6; ++r)
+        if (Hs(r, i) != S(0)) Ei -= Hs(r, i) * Z.col(r);
+    }
+    E.bottomRows(nk).setIdentity();
+    // nu(k)^* = epsilon^* D^{-1} into the columns of hinge k of Minv, rows [0, c + nk).
+    const HingeMatrix<S>& D_inv = art.D_inv[k - 1];
+    for (int j = 0; j < nk; ++j) {
+      auto Mj = Minv.col(B.v_offset + j).head(c + nk);
+      Mj = D_inv(0, j) * E.col(0);
+      for (int i = 1; i < nk; ++i) Mj += D_inv(i, j) * E.col(i);
+    }
+    // Z+(k)^* = Z^* + epsilon^* G^*
+    auto Y = w.Y.topRows(c + nk);
+    const JointMap<S>& G = art.G[k - 1];
+    for (int r = 0; r < 6; ++r) {
+      Y.col(r).head(c) = Z.col(r);
+      Y.col(r).tail(nk).setZero();
+      for (int i = 0; i < nk; ++i) Y.col(r) += G(r, i) * E.col(i);
+    }
+  }
+  // Base to tip. Rows [0, c + nk) of Y hold A(k)^*, restricted to hinges k..1.
+  for (int k = n; k >= 1; --k) {
+    const BodyT<S>& B = m.body(k);
+    const int nk = B.hinge.nv(), c = B.v_offset + nk;
+    if (nk == 1) {  // one row pass, detail::base_to_tip_rows_1dof()
+      S* A = w.Y.data();
+      const Eigen::Index ld = w.Y.rows();
+      detail::base_to_tip_rows_1dof(c, k == n ? nullptr : &ws.phi[k - 1], one_dof_map(B.hinge),
+                                    Vec6<S>(art.G[k - 1].col(0)), A, A + ld, A + 2 * ld, A + 3 * ld,
+                                    A + 4 * ld, A + 5 * ld, Minv.col(B.v_offset).data());
+      continue;
+    }
+    auto A = w.Y.topRows(c);
+    auto Ap = w.Z.topRows(c);  // A+(k)^*
+    if (k == n)
+      Ap.setZero();
+    else
+      detail::transpose_apply_phi_rows(ws.phi[k - 1], A, Ap);
+    const JointMap<S>& G = art.G[k - 1];
+    const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
+    for (int j = 0; j < nk; ++j) {
+      auto Mj = Minv.col(B.v_offset + j).head(c);
+      for (int r = 0; r < 6; ++r) Mj -= G(r, j) * Ap.col(r);
+    }
+    for (int r = 0; r < 6; ++r) {
+      A.col(r) = Ap.col(r);
+      for (int j = 0; j < nk; ++j)
+        if (Hs(r, j) != S(0)) A.col(r) += Hs(r, j) * Minv.col(B.v_offset + j).head(c);
+    }
+  }
+  Minv.template triangularView<Eigen::StrictlyLower>() = Minv.transpose();
+}
+
+}  // namespace soa

@@ -1,0 +1,7 @@
+/// \file
+/// Simulation of serial chains: the chain as an ODE, the integrators, the loop.
+#pragma once
+
+#include "soa/sim/chain_system.hpp"
+#include "soa/sim/integrators.hpp"
+#include "soa/sim/simulate.hpp"

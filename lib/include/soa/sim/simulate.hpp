@@ -1,0 +1,201 @@
+/// \file
+/// The simulation loop: fixed or adaptive steps, energy bookkeeping, and blow-up detection.
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "soa/sim/integrators.hpp"
+
+namespace soa {
+
+/// What to integrate and how.
+template <class S>
+struct SimulationOptionsT {
+  Integrator method = Integrator::RK4;
+  S dt = S(0);     ///< fixed step (every method but dopri5); dopri5's first step if set
+  S tol = S(0);    ///< dopri5: relative and absolute tolerance of the local error
+  S t_end = S(1);  ///< integrate over [0, t_end]
+  /// A run whose \f$\|\beta\|_\infty\f$ exceeds this factor times \f$\max(1,
+  /// \|\beta_0\|_\infty)\f$, or whose state is not finite, has blown up.
+  S blowup_factor = S(1e6);
+};
+using SimulationOptions = SimulationOptionsT<double>;
+
+/// What a run did.
+struct SimulationSummary {
+  long steps = 0;               ///< accepted steps
+  long rejected = 0;            ///< rejected steps (dopri5)
+  long evaluations = 0;         ///< forward dynamics calls
+  double wall_seconds = 0;      ///< wall time of the loop
+  double energy0 = 0;           ///< energy at t = 0
+  double energy1 = 0;           ///< energy at the end
+  double max_energy_drift = 0;  ///< max |E(t) - E(0)| over the steps
+};
+
+/// An estimate of the largest \f$|\lambda|\f$ of the Jacobian of the rate at \p x (power
+/// iteration on finite-difference Jacobian-vector products): with the step h,
+/// \f$h|\lambda|\f$ tells whether an explicit method can be stable (RK4: below about 2.8,
+/// Euler: 2 on the real axis, 0 on the imaginary one).
+template <class S>
+S stiffness_estimate(StepperT<S>& stepper, int nv, S t, const StateT<S>& x) {
+  const int n2 = 2 * nv;
+  VecX<S> F0(n2), F1(n2), d(n2);
+  std::mt19937 g(5);
+  std::normal_distribution<double> N;
+  for (int i = 0; i < n2; ++i) d[i] = S(N(g));
+  d.normalize();
+  stepper.rate_at(t, x, VecX<S>::Zero(n2), F0);
+  // Growth of |J^k d| per iteration, as a geometric mean over the last 20 of 30 (the
+  // dominant eigenvalues of a mechanical system come in pairs +-i omega, so single ratios
+  // alternate).
+  double log_sum = 0;
+  int counted = 0;
+  for (int it = 0; it < 30; ++it) {
+    const S delta = std::sqrt(eps<S>());
+    stepper.rate_at(t, x, (delta * d).eval(), F1);
+    const VecX<S> Jd = (F1 - F0) / delta;
+    const S norm = Jd.norm();
+    if (!(norm > S(0)) || !std::isfinite(double(norm))) break;
+    if (it >= 10) log_sum += std::log(double(norm)), ++counted;
+    d = Jd / norm;
+  }
+  const S lambda = counted > 0 ? S(std::exp(log_sum / counted)) : S(0);
+  return lambda;
+}
+
+/// Where each method is stable on an undamped oscillation \f$\ddot x = -\omega^2 x\f$, for the
+/// blow-up message.
+inline const char* stability_note(Integrator i) {
+  switch (i) {
+    case Integrator::Euler:
+      return "explicit Euler grows on undamped oscillations at every step, |1 + i h omega| > 1: "
+             "use symplectic-euler, rk4 or implicit-midpoint";
+    case Integrator::SymplecticEuler:
+      return "symplectic Euler needs h omega < 2: take a smaller --dt or implicit-midpoint";
+    case Integrator::RK4:
+      return "RK4 needs h omega < 2.83: take a smaller --dt or implicit-midpoint";
+    case Integrator::DormandPrince:
+      return "dopri5 needs h omega < about 3.3 and shrinks its steps to match: a stiff "
+             "scene is cheaper with implicit-midpoint";
+    case Integrator::ImplicitMidpoint:
+      return "implicit midpoint is stable at any step; Newton's method needs a smaller --dt";
+  }
+  return "";
+}
+
+/// Integrates \p sys from the state \p x (overwritten by the final state) over
+/// [0, opt.t_end]. \p observe(t, x) is called at t = 0 and after every accepted step. A run
+/// that blows up stops with soa::Error giving the time, the step, and the estimated
+/// stiffness times the step (stiffness_estimate()) — never a state full of NaN.
+template <class S, class Observer>
+SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationOptionsT<S>& opt,
+                           Observer&& observe) {
+  const bool adaptive = opt.method == Integrator::DormandPrince;
+  if (adaptive && !(opt.tol > S(0))) throw Error("simulate: dopri5 needs a tolerance (--tol)");
+  if (!adaptive && !(opt.dt > S(0))) throw Error("simulate: a fixed-step method needs --dt > 0");
+  if (!(opt.t_end >= S(0))) throw Error("simulate: the end time must be >= 0");
+  const int nv = sys.model().nv();
+  StepperT<S> stepper(sys);
+  SimulationSummary sum;
+  const long evals0 = sys.evaluations();
+  const auto start = std::chrono::steady_clock::now();
+  const S E0 = sys.energy(x);
+  sum.energy0 = sum.energy1 = double(E0);
+  const S v_ref = std::max(S(1), x.beta.template lpNorm<Eigen::Infinity>());
+  S t = S(0);
+  S h = opt.dt > S(0) ? opt.dt : S(1e-3) * std::max(opt.t_end, S(1e-3));
+  // Fixed steps divide [0, t_end] evenly: h = t_end / ceil(t_end / dt).
+  const long n_fixed =
+      adaptive ? 0 : std::max(1L, long(std::ceil(double(opt.t_end / opt.dt) - 1e-9)));
+  if (!adaptive) h = opt.t_end / S(n_fixed);
+  observe(t, x);
+  StateT<S> x1 = x;
+  VecX<S> err;
+  auto blow_up = [&](const std::string& what, S h_step) {
+    const S lambda = stiffness_estimate(stepper, nv, t, x);
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "simulate (%s): blow-up at t = %.6g s, step %ld (h = %.3g): %s; estimated "
+                  "stiffness x step = %.3g (%s)",
+                  integrator_name(opt.method), double(t), sum.steps + 1, double(h_step),
+                  what.c_str(), double(lambda * h_step), stability_note(opt.method));
+    throw Error(buf);
+  };
+  while (adaptive ? t < opt.t_end : sum.steps < n_fixed) {
+    if (adaptive) h = std::min(h, opt.t_end - t);
+    bool ok = true;
+    try {
+      switch (opt.method) {
+        case Integrator::Euler:
+          stepper.euler(t, h, x, x1);
+          break;
+        case Integrator::SymplecticEuler:
+          stepper.symplectic_euler(t, h, x, x1);
+          break;
+        case Integrator::RK4:
+          stepper.rk4(t, h, x, x1);
+          break;
+        case Integrator::DormandPrince:
+          stepper.dopri5(t, h, x, x1, err);
+          break;
+        case Integrator::ImplicitMidpoint:
+          ok = stepper.implicit_midpoint(t, h, x, x1);
+          break;
+      }
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      if (msg.find("singular") != std::string::npos) throw;
+      blow_up(msg, h);
+    }
+    if (!ok) blow_up("Newton's method did not converge", h);
+    if (adaptive) {
+      // RMS norm of the local error scaled by tol (1 + |y|), y = (u, beta).
+      S e2 = S(0);
+      for (int i = 0; i < nv; ++i) {
+        const S su = opt.tol;  // local coordinates: angles and offsets, absolute
+        const S sb = opt.tol * (S(1) + std::max(std::abs(x.beta[i]), std::abs(x1.beta[i])));
+        e2 += (err[i] / su) * (err[i] / su) + (err[nv + i] / sb) * (err[nv + i] / sb);
+      }
+      const S e = nv > 0 ? std::sqrt(e2 / S(2 * nv)) : S(0);
+      const S factor =
+          std::min(S(5), std::max(S(0.2), S(0.9) * std::pow(std::max(e, S(1e-10)), S(-0.2))));
+      if (!(e <= S(1)) && std::isfinite(double(e))) {
+        ++sum.rejected;
+        h *= factor;
+        if (h < S(16) * eps<S>() * std::max(S(1), t)) blow_up("the step size underflowed", h);
+        continue;
+      }
+      if (!std::isfinite(double(e))) blow_up("the error estimate is not finite", h);
+      t += h;
+      h *= factor;
+    } else {
+      t = S(sum.steps + 1) * h;
+    }
+    if (!x1.theta.allFinite() || !x1.beta.allFinite()) {
+      t = adaptive ? t - h : S(sum.steps) * h;
+      blow_up("the state is not finite", h);
+    }
+    if (x1.beta.template lpNorm<Eigen::Infinity>() > opt.blowup_factor * v_ref) {
+      char what[120];
+      std::snprintf(what, sizeof what, "|beta| = %.3g, over %.3g times its start",
+                    double(x1.beta.template lpNorm<Eigen::Infinity>()), double(opt.blowup_factor));
+      t = adaptive ? t - h : S(sum.steps) * h;
+      blow_up(what, h);
+    }
+    x = x1;
+    ++sum.steps;
+    const S E = sys.energy(x);
+    sum.energy1 = double(E);
+    sum.max_energy_drift = std::max(sum.max_energy_drift, double(std::abs(E - E0)));
+    observe(t, x);
+  }
+  sum.evaluations = sys.evaluations() - evals0;
+  sum.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sum;
+}
+
+}  // namespace soa

@@ -1,0 +1,123 @@
+// Lesson 7 reference solutions (statements in exercises/07-mass-matrix-factorization).
+#include <cmath>
+
+#include "exercises.hpp"
+
+namespace soa::ex07 {
+
+namespace {
+
+// The Riccati quantities of lesson 6 at state x, with phi(k+1,k) in ws.phi.
+struct Riccati {
+  Workspace ws;
+  Articulated art;
+  Riccati(const Model& m, const State& x) : ws(m), art(m) {
+    update_phi(m, x.theta, ws);
+    articulated_inertias(m, x, ws, art);
+  }
+};
+
+MatX H_star(const Model& m, const State& x, int k) {
+  const Body& B = m.body(k);
+  return B.hinge.H_star(x.theta.data() + B.q_offset);
+}
+
+}  // namespace
+
+// Lesson 7, section 1: K = E_phi G, psi = (I - E_phi tau_bar)^-1.
+KAndPsi k_and_psi(const Model& m, const State& x) {
+  const Operators op = Operators::build(m, x);
+  const Riccati r(m, x);
+  const int n = m.n(), N = 6 * n;
+  MatX G = MatX::Zero(N, m.nv()), tau_bar = MatX::Zero(N, N);
+  for (int k = 1; k <= n; ++k) {
+    const Body& B = m.body(k);
+    G.block(6 * (k - 1), B.v_offset, 6, B.hinge.nv()) = r.art.G[std::size_t(k - 1)];
+    tau_bar.block(6 * (k - 1), 6 * (k - 1), 6, 6) = r.art.tau_bar(m, x.theta, k);
+  }
+  KAndPsi out;
+  out.K = op.E_phi * G;
+  out.psi = (MatX::Identity(N, N) - op.E_phi * tau_bar).inverse();
+  return out;
+}
+
+// Lesson 7, sections 3-4: L = I + H phi K, L^-1 = I - H psi K, D.
+InnovationsFactor innovations_factor(const Model& m, const State& x) {
+  const Operators op = Operators::build(m, x);
+  const KAndPsi kp = k_and_psi(m, x);
+  const Riccati r(m, x);
+  const MatX I = MatX::Identity(m.nv(), m.nv());
+  InnovationsFactor f;
+  f.L = I + op.H * op.phi * kp.K;
+  f.L_inv = I - op.H * kp.psi * kp.K;
+  f.D = MatX::Zero(m.nv(), m.nv());
+  for (int k = 1; k <= m.n(); ++k) {
+    const Body& B = m.body(k);
+    f.D.block(B.v_offset, B.v_offset, B.hinge.nv(), B.hinge.nv()) = r.art.D[std::size_t(k - 1)];
+  }
+  return f;
+}
+
+// Exercise 7.3: Upsilon(k) = psi*(k+1,k) Upsilon(k+1) psi(k+1,k) + H*(k) D^-1(k) H(k), base to
+// tip; Minv(k,k) = D^-1(k) + G*(k) phi*(k+1,k) Upsilon(k+1) phi(k+1,k) G(k).
+std::vector<MatX> minv_diagonal(const Model& m, const State& x) {
+  const Riccati r(m, x);
+  const int n = m.n();
+  std::vector<MatX> out(static_cast<std::size_t>(n));
+  Mat6<double> Upsilon = Mat6<double>::Zero();  // Upsilon(k+1)
+  for (int k = n; k >= 1; --k) {
+    const std::size_t j = std::size_t(k - 1);
+    const MatX D_inv = r.art.D_inv[j];
+    const MatX G = r.art.G[j];
+    const MatX Hs = H_star(m, x, k);
+    if (k == n) {
+      out[j] = D_inv;
+      Upsilon = Hs * D_inv * Hs.transpose();
+      continue;
+    }
+    const Mat6<double> phi = r.ws.phi[j].matrix();  // phi(k+1,k)
+    const Mat6<double> U = phi.transpose() * Upsilon * phi;
+    out[j] = D_inv + G.transpose() * U * G;
+    const Mat6<double> tau = r.art.tau_bar(m, x.theta, k);
+    Upsilon = tau.transpose() * U * tau + Hs * D_inv * Hs.transpose();
+  }
+  return out;
+}
+
+// Lesson 7, section 4: the tip-to-base and base-to-tip recursions of M^-1 b.
+VecX solve(const Model& m, const State& x, const VecX& b) {
+  const Riccati r(m, x);
+  const int n = m.n();
+  std::vector<VecX> nu(static_cast<std::size_t>(n));
+  Force z_plus = Force::Zero();
+  for (int k = 1; k <= n; ++k) {
+    const Body& B = m.body(k);
+    const std::size_t j = std::size_t(k - 1);
+    const Force z = k > 1 ? r.ws.phi[j - 1].apply(z_plus) : Force::Zero();
+    const VecX eps = b.segment(B.v_offset, B.hinge.nv()) - H_star(m, x, k).transpose() * z.vector();
+    nu[j] = r.art.D_inv[j] * eps;
+    z_plus = Force(Vec6<double>(z.vector() + r.art.G[j] * eps));
+  }
+  VecX y(m.nv());
+  Acceleration alpha = Acceleration::Zero();  // alpha(k+1)
+  for (int k = n; k >= 1; --k) {
+    const Body& B = m.body(k);
+    const std::size_t j = std::size_t(k - 1);
+    const Acceleration alpha_plus =
+        k < n ? r.ws.phi[j].transpose_apply(alpha) : Acceleration::Zero();
+    const VecX yk = nu[j] - r.art.G[j].transpose() * alpha_plus.vector();
+    y.segment(B.v_offset, B.hinge.nv()) = yk;
+    alpha = Acceleration(Vec6<double>(alpha_plus.vector() + H_star(m, x, k) * yk));
+  }
+  return y;
+}
+
+// Lesson 7, section 3: log det M = sum_k log det D(k).
+double log_det_mass_matrix(const Model& m, const State& x) {
+  const Riccati r(m, x);
+  double s = 0;
+  for (const auto& D : r.art.D) s += std::log(MatX(D).determinant());
+  return s;
+}
+
+}  // namespace soa::ex07

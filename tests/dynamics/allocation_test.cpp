@@ -1,0 +1,81 @@
+// The O(N) and O(N^2) algorithms allocate nothing per call once their workspaces are sized
+// (the developers' guide): global operator new is counted around each call.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "property.hpp"
+#include "random_chain.hpp"
+#include "soa/chain.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace {
+
+using soa::test::Random;
+
+// Something that allocates, out of the optimizer's sight.
+__attribute__((noinline)) void benchmark_vector() {
+  std::vector<double>* v = new std::vector<double>(100);
+  delete v;
+}
+
+// Allocations made by \p f, run twice (the first call may size outputs).
+template <class F>
+long allocations(F&& f) {
+  f();
+  const long before = g_allocations.load();
+  f();
+  return g_allocations.load() - before;
+}
+
+TEST(dynamics_Allocation, NoneInTheRecursions) {
+  // The counter sees allocations at all (else this test could not fail).
+  ASSERT_GT(allocations([] { benchmark_vector(); }), 0);
+  Random<double> rnd(43);
+  soa::test::ChainOptions opt;
+  opt.gravity = true;
+  opt.springs = true;
+  for (int i = 0; i < 20; ++i) {
+    const soa::Model m = soa::test::random_chain(rnd, 1 + i % 12, opt);
+    const soa::State x = soa::test::random_state(rnd, m);
+    const soa::VecX<double> v = soa::test::random_vector(rnd, m.nv());
+    const soa::ExternalForces<double> f_ext = soa::test::random_forces(rnd, m);
+    soa::Workspace ws(m);
+    soa::VecX<double> out(m.nv());
+    EXPECT_EQ(allocations([&] { soa::inverse_dynamics(m, x, v, f_ext, ws, out); }), 0)
+        << "inverse_dynamics, case " << i;
+    soa::ForwardDynamics fd(m);
+    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, fd, out); }), 0)
+        << "forward_dynamics, case " << i;
+    soa::MassMatrixInverse w(m);
+    soa::MatX<double> M(m.nv(), m.nv());
+    EXPECT_EQ(allocations([&] { soa::mass_matrix_inverse(m, x, ws, w, M); }), 0)
+        << "mass_matrix_inverse, case " << i;
+    std::vector<soa::SpatialInertia> R(std::size_t(m.n()));
+    EXPECT_EQ(allocations([&] { soa::mass_matrix_crb(m, x, ws, R, M); }), 0)
+        << "mass_matrix_crb, case " << i;
+    soa::Articulated art(m);
+    EXPECT_EQ(allocations([&] { soa::articulated_inertias(m, x, ws, art); }), 0)
+        << "articulated_inertias, case " << i;
+  }
+}
+
+}  // namespace
