@@ -1,5 +1,5 @@
 // Lesson 8's error-against-run-time report (issue 5), run by `make run` before the lesson
-// program, and in its quick mode by `make test` (ctest timing.08):
+// program (`make test` does not build it; --quick runs a short version by hand):
 //   lesson08_timing OUTDIR [--quick]
 // 1. Revolute benchmark chains, N = 1 ... 2000: the time per call (Google Benchmark, median
 //    CPU time of repeated runs) and the forward error against the long double articulated
