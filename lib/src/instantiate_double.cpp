@@ -2,5 +2,5 @@
 #include "instantiate.hpp"
 
 namespace soa {
-SOA_INSTANTIATE(double)
+SOA_TEMPLATES(, double)
 }  // namespace soa

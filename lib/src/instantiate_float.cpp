@@ -2,5 +2,5 @@
 #include "instantiate.hpp"
 
 namespace soa {
-SOA_INSTANTIATE(float)
+SOA_TEMPLATES(, float)
 }  // namespace soa

@@ -2,5 +2,5 @@
 #include "instantiate.hpp"
 
 namespace soa {
-SOA_INSTANTIATE(long double)
+SOA_TEMPLATES(, long double)
 }  // namespace soa

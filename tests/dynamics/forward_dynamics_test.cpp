@@ -17,20 +17,6 @@
 
 #include "dynamics_support.hpp"
 
-// The float and long double algorithms are compiled once, in the library
-// (lib/src/instantiate_*.cpp): declared here, not instantiated again.
-#define SOA_TEST_EXTERN(S)                                                           \
-  extern template class soa::ModelT<S>;                                              \
-  extern template struct soa::WorkspaceT<S>;                                         \
-  extern template struct soa::ForwardDynamicsT<S>;                                   \
-  extern template void soa::forward_dynamics<S>(                                     \
-      const soa::ModelT<S>&, const soa::StateT<S>&, const soa::VecX<S>&,             \
-      const soa::ExternalForces<S>&, soa::WorkspaceT<S>&, soa::ForwardDynamicsT<S>&, \
-      soa::VecX<S>&);
-SOA_TEST_EXTERN(float)
-SOA_TEST_EXTERN(long double)
-#undef SOA_TEST_EXTERN
-
 namespace {
 
 using soa::test::DynamicsCase;

@@ -15,3 +15,6 @@
 #include "soa/chain/model.hpp"
 #include "soa/chain/operators.hpp"
 #include "soa/chain/workspace.hpp"
+
+// The templates are compiled in the library (float, double, long double).
+#include "soa/instantiations.hpp"

@@ -17,3 +17,6 @@
 #include "soa/spatial_vector.hpp"
 #include "soa/tilde.hpp"
 #include "soa/types.hpp"
+
+// The templates are compiled in the library (float, double, long double).
+#include "soa/instantiations.hpp"

@@ -1,0 +1,92 @@
+// The library's templates, compiled once in lib/src in the three precisions the course uses
+// (float, double, long double). SOA_TEMPLATES(extern, S) below declares them `extern` for
+// every program that includes the library's headers, which then links the library's copy
+// instead of compiling the algorithms' Eigen code again (most of a test's compile time);
+// lib/src/instantiate.hpp expands the same list without `extern` to define them.
+#pragma once
+
+#include "soa/chain.hpp"
+#include "soa/coriolis.hpp"
+#include "soa/free_body.hpp"
+#include "soa/phi.hpp"
+#include "soa/pose.hpp"
+#include "soa/rigid_body.hpp"
+#include "soa/rotation.hpp"
+#include "soa/sim.hpp"
+#include "soa/spatial_inertia.hpp"
+#include "soa/spatial_vector.hpp"
+
+// clang-format off
+#define SOA_TEMPLATES(PREFIX, S)                                                                 \
+  PREFIX template class PoseT<S>;                                                                \
+  PREFIX template class PhiT<S>;                                                                 \
+  PREFIX template class SpatialInertiaT<S>;                                                      \
+  PREFIX template class UnitQuaternionT<S>;                                                      \
+  PREFIX template struct AxisAngleT<S>;                                                          \
+  PREFIX template struct GibbsT<S>;                                                              \
+  PREFIX template struct CayleyT<S>;                                                             \
+  PREFIX template struct EulerZYXT<S>;                                                           \
+  PREFIX template class SpatialVector<S, VelocityKind>;                                          \
+  PREFIX template class SpatialVector<S, AccelerationKind>;                                      \
+  PREFIX template class SpatialVector<S, ForceKind>;                                             \
+  PREFIX template class SpatialVector<S, MomentumKind>;                                          \
+  PREFIX template Vec3<S> log_so3<S>(const Mat3<S>&);                                            \
+  PREFIX template Mat3<S> exp_so3<S>(const Vec3<S>&);                                            \
+  PREFIX template FreeBodyStateT<S> rk4_step<S>(const SpatialInertiaT<S>&,                       \
+                                                const FreeBodyStateT<S>&, S);                    \
+  PREFIX template struct HingeT<S>;                                                              \
+  PREFIX template class ModelT<S>;                                                               \
+  PREFIX template struct WorkspaceT<S>;                                                          \
+  PREFIX template struct OperatorsT<S>;                                                          \
+  PREFIX template void update_phi<S>(const ModelT<S>&, const VecX<S>&, WorkspaceT<S>&);          \
+  PREFIX template void update_poses<S>(const ModelT<S>&, WorkspaceT<S>&);                        \
+  PREFIX template void update_velocities<S>(const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&); \
+  PREFIX template void update_accelerations<S>(const ModelT<S>&, const StateT<S>&, const S*,     \
+                                               const AccelerationT<S>&, WorkspaceT<S>&);         \
+  PREFIX template void inverse_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
+                                           const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);  \
+  PREFIX template void jacobian<S>(const ModelT<S>&, const VecX<S>&, const WorkspaceT<S>&, int,  \
+                                   const PoseT<S>&, Eigen::Matrix<S, 6, Eigen::Dynamic>&);       \
+  PREFIX template AccelerationT<S> jacobian_dot_times_beta<S>(                                   \
+      const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&, int, const PoseT<S>&);                 \
+  PREFIX template void composite_inertias<S>(const ModelT<S>&, const WorkspaceT<S>&,             \
+                                             std::vector<SpatialInertiaT<S>>&);                  \
+  PREFIX template MatX<S> composite_inertia_operator<S>(const ModelT<S>&, const WorkspaceT<S>&); \
+  PREFIX template void mass_matrix_crb<S>(const ModelT<S>&, const StateT<S>&,                    \
+                                          const WorkspaceT<S>&,                                  \
+                                          std::vector<SpatialInertiaT<S>>&, MatX<S>&);           \
+  PREFIX template void inverse_dynamics_composite<S>(                                            \
+      const ModelT<S>&, const StateT<S>&, const VecX<S>&, const ExternalForces<S>&,              \
+      WorkspaceT<S>&, std::vector<SpatialInertiaT<S>>&, VecX<S>&);                               \
+  PREFIX template struct ArticulatedT<S>;                                                        \
+  PREFIX template void transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&, Mat6<S>&);         \
+  PREFIX template Mat6<S> transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&);                \
+  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
+                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int, S);   \
+  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
+                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int);      \
+  PREFIX template S riccati_step<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&,    \
+                                    int, ArticulatedT<S>&, CompositeTraceT<S>&);                 \
+  PREFIX template void articulated_inertias<S>(const ModelT<S>&, const StateT<S>&,               \
+                                               const WorkspaceT<S>&, ArticulatedT<S>&);          \
+  PREFIX template struct ForwardDynamicsT<S>;                                                    \
+  PREFIX template void forward_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
+                                           const ExternalForces<S>&, WorkspaceT<S>&,             \
+                                           ForwardDynamicsT<S>&, VecX<S>&);                      \
+  PREFIX template struct InnovationsOperatorsT<S>;                                               \
+  PREFIX template struct MassMatrixInverseT<S>;                                                  \
+  PREFIX template void mass_matrix_inverse<S>(const ModelT<S>&, const StateT<S>&,                \
+                                              const WorkspaceT<S>&, MassMatrixInverseT<S>&,      \
+                                              MatX<S>&);                                         \
+  PREFIX template void retract<S>(const ModelT<S>&, const VecX<S>&, const VecX<S>&, VecX<S>&);   \
+  PREFIX template class ChainSystemT<S>;                                                         \
+  PREFIX template class StepperT<S>;
+// clang-format on
+
+#ifndef SOA_INSTANTIATING
+namespace soa {
+SOA_TEMPLATES(extern, float)
+SOA_TEMPLATES(extern, double)
+SOA_TEMPLATES(extern, long double)
+}  // namespace soa
+#endif
