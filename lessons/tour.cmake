@@ -1,8 +1,9 @@
 # Runs the lesson programs in order (cmake -P): one line per lesson with its checks and the
 # files it wrote; the full output of each lesson is kept in its folder as output.txt.
-# LESSONS: entries NN-topic|lesson program|timing program, "-" where there is none. A timing
-# program (lessons/NN-topic/timing/) runs first, into the lesson's freshly cleared folder,
-# its output kept as timing_output.txt; then the lesson program.
+# LESSONS: entries NN-topic|lesson program[|report program...], "-" for a lesson program not
+# written yet. Report programs (lessons/NN-topic/<name>/, built as lessonNN_<name>) run
+# first, into the lesson's freshly cleared folder, each output kept as <name>_output.txt;
+# then the lesson program.
 string(REPLACE "," ";" lessons "${LESSONS}")
 file(MAKE_DIRECTORY "${OUT}")
 set(failed 0)
@@ -11,24 +12,22 @@ foreach(entry IN LISTS lessons)
   string(REPLACE "|" ";" parts "${entry}")
   list(GET parts 0 dir)
   list(GET parts 1 exe)
-  set(timing "-")
-  list(LENGTH parts n_parts)
-  if(n_parts GREATER 2)
-    list(GET parts 2 timing)
-  endif()
+  list(SUBLIST parts 2 -1 reports)
   set(out_dir "${OUT}/${dir}")
   file(REMOVE_RECURSE "${out_dir}")  # no stale figure outlives the lesson that drew it
   file(MAKE_DIRECTORY "${out_dir}")
   string(REPLACE "-" " " topic "${dir}")
   string(SUBSTRING "${topic}" 3 -1 topic)
   string(SUBSTRING "${dir}" 0 2 nn)
-  if(NOT timing STREQUAL "-")
+  foreach(report IN LISTS reports)
+    get_filename_component(name "${report}" NAME_WE)
+    string(REGEX REPLACE "^lesson[0-9][0-9]_" "" name "${name}")
     string(TIMESTAMP t0 "%s")
-    execute_process(COMMAND "${timing}" "${out_dir}" OUTPUT_VARIABLE out ERROR_VARIABLE err
+    execute_process(COMMAND "${report}" "${out_dir}" OUTPUT_VARIABLE out ERROR_VARIABLE err
                     RESULT_VARIABLE rc)
     string(TIMESTAMP t1 "%s")
     math(EXPR seconds "${t1} - ${t0}")
-    file(WRITE "${out_dir}/timing_output.txt" "${out}${err}")
+    file(WRITE "${out_dir}/${name}_output.txt" "${out}${err}")
     string(REGEX MATCH "[0-9]+ passed, [0-9]+ failed" closing "${out}")
     if(NOT closing)
       set(closing "no closing line (exit ${rc})")
@@ -36,11 +35,11 @@ foreach(entry IN LISTS lessons)
     if(NOT rc EQUAL 0)
       set(failed 1)
     endif()
-    message("Lesson ${nn}  timing: ${closing} in ${seconds} s  -> ${out_dir}/timing_output.txt")
+    message("Lesson ${nn}  ${name}: ${closing} in ${seconds} s  -> ${out_dir}/${name}_output.txt")
     if(NOT rc EQUAL 0)
       message("  ${err}")
     endif()
-  endif()
+  endforeach()
   if(exe STREQUAL "-")  # only the timing program so far
     continue()
   endif()

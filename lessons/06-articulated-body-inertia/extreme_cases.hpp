@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "report.hpp"
 #include "soa/chain.hpp"
 #include "soa/soa.hpp"
 
@@ -23,6 +24,8 @@ namespace soa::lesson::extreme {
 using VecX = soa::VecX<double>;
 using MatX = soa::MatX<double>;
 using Vec3 = soa::Vec3<double>;
+using soa::lesson::csv_field;
+using soa::lesson::num;
 
 /// One family of extreme chains at one n: n revolute hinges, every axis along z; hinge k
 /// sits on body k+1 one metre out along x; body k is a point-like body of mass m(k) with
@@ -331,22 +334,6 @@ inline Result evaluate(const Spec& s) {
         Eigen::SelfAdjointEigenSolver<MatX>(S, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
   }
   return r;
-}
-
-/// A number for the CSV and the table ("" for NaN: not computed).
-inline std::string num(double v, const char* format = "%.3e") {
-  if (std::isnan(v)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-/// A CSV field, quoted when it holds a comma or a quote (RFC 4180).
-inline std::string csv_field(const std::string& f) {
-  if (f.find_first_of(",\"") == std::string::npos) return f;
-  std::string q = "\"";
-  for (char c : f) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 /// The pose and the masses of a case in words, e.g. "straight, m(k+1)/m(k) = 1e-08".

@@ -2,30 +2,13 @@
 // (the developers' guide): global operator new is counted around each call.
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cstdlib>
-#include <new>
 #include <vector>
 
+#include "count_allocations.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
 #include "soa/chain.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace {
 
@@ -41,9 +24,9 @@ __attribute__((noinline)) void benchmark_vector() {
 template <class F>
 long allocations(F&& f) {
   f();
-  const long before = g_allocations.load();
+  const long before = soa::test::allocations();
   f();
-  return g_allocations.load() - before;
+  return soa::test::allocations() - before;
 }
 
 TEST(dynamics_Allocation, NoneInTheRecursions) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "report.hpp"
 #include "soa/chain.hpp"
 #include "soa/soa.hpp"
 
@@ -91,6 +92,16 @@ struct Spec {
   double rate = 0;
   double tip_mass = -1;
 };
+
+/// The short name of a case, for tables and figure axes: "r1e-08 J1e-09 bent w1e+02 n10".
+inline std::string short_name(const Spec& s) {
+  std::string t = s.ratio != 1 ? "r" + soa::lesson::num(s.ratio, "%.0e") : "r1";
+  t += " J" + soa::lesson::num(s.J, "%.0e");
+  if (s.pose_seed) t += " bent";
+  if (s.rate > 0) t += " w" + soa::lesson::num(s.rate, "%.0e");
+  if (s.tip_mass >= 0) t += " tip0";
+  return t + " n" + std::to_string(s.n);
+}
 
 /// The chain and the problem of \p s, bodies named by their course number (`b1` is the tip).
 inline Problem<double> extreme_chain(const Spec& s) {

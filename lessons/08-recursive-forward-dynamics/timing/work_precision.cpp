@@ -35,32 +35,11 @@
 namespace {
 
 using namespace soa::lesson::timing;
+using soa::lesson::csv_field;
+using soa::lesson::num;
+using soa::lesson::time_text;
 namespace fs = std::filesystem;
 constexpr double kEps = soa::eps<double>();
-
-/// A number for the CSV and the tables ("" for NaN: not computed).
-std::string num(double v, const char* format = "%.3e") {
-  if (std::isnan(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-/// A CSV field, quoted when it holds a comma or a quote (RFC 4180).
-std::string csv_field(const std::string& f) {
-  if (f.find_first_of(",\"") == std::string::npos) return f;
-  std::string q = "\"";
-  for (char c : f) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-/// A time for a table: ns, µs or ms.
-std::string time_text(double ns) {
-  if (std::isnan(ns)) return "-";
-  if (ns < 1e3) return num(ns, "%.0f ns");
-  if (ns < 1e6) return num(ns / 1e3, "%.3g µs");
-  return num(ns / 1e6, "%.4g ms");
-}
 
 // ---------------------------------------------------------------------------------------
 // 1. Error against run time on the benchmark chains.
@@ -235,16 +214,6 @@ constexpr int kDenseMax = 500;  ///< CRB + LDLT and M^-1 in the extreme cases up
 /// algorithm, cond(M) for CRB + LDLT and M^-1), else as failed.
 constexpr double kTol = 1e-6;
 constexpr double kBound = 16;
-
-/// The short name of a case, for the figure's axis: "r1e-08 J1e-09 n500" and the like.
-std::string short_name(const Spec& s) {
-  std::string t = s.ratio != 1 ? "r" + num(s.ratio, "%.0e") : "r1";
-  t += " J" + num(s.J, "%.0e");
-  if (s.pose_seed) t += " bent";
-  if (s.rate > 0) t += " w" + num(s.rate, "%.0e");
-  if (s.tip_mass >= 0) t += " tip0";
-  return t + " n" + std::to_string(s.n);
-}
 
 /// The case in words, e.g. "straight, mass ratio 1e-08, J 1e-09".
 std::string describe(const Spec& s) {

@@ -1,0 +1,363 @@
+// The simulation report of issue 6, run by `make run` before lesson 8's program (`make
+// test` does not build it):
+//   lesson08_simulation OUTDIR [--quick]
+// 1. Error against run time: on each default scene (double pendulum, seven-joint arm,
+//    50-link chain) and a stiff-spring chain, every integrator over a sweep of steps (or
+//    tolerances, dopri5), final-state error against a reference solution, the order of
+//    convergence fitted: l8_sim_work_precision.csv, l8_sim_orders.md, and one figure per
+//    scene l8_sim_wp_SCENE.png.
+// 2. Long-horizon energy of conservative scenes: symplectic Euler, implicit midpoint and
+//    RK4 at one step size: l8_sim_energy.csv, l8_sim_energy.png.
+// 3. The stiff-spring chains, k = 1 ... 1e8 (stiff.hpp): l8_sim_stiff.csv/.md/.png.
+// 4. The extreme cases of lessons 5-8 simulated (extreme.hpp): l8_sim_extreme.csv/.md.
+// 5. The one-page summary the notes include: l8_sim_summary.md.
+// --quick: short horizons and sweeps, so that every code path runs in seconds.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "checklist.hpp"
+#include "extreme.hpp"
+#include "plot.hpp"
+#include "report.hpp"
+#include "scenes.hpp"
+#include "stiff.hpp"
+#include "support.hpp"
+
+namespace {
+
+using namespace soa::lesson::sim;
+using soa::lesson::Checklist;
+using soa::lesson::csv_field;
+using soa::lesson::num;
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------
+// 1. Error against run time.
+
+/// One point of a work-precision diagram.
+struct Point {
+  std::string scene;
+  Integrator method;
+  double h = kNaN, tol = kNaN;  ///< the step (fixed-step methods) or the tolerance (dopri5)
+  Run r;
+  double error = kNaN;
+};
+
+/// The sweep of one method on one problem: fixed steps \f$h = T / (n_0 2^j)\f$, or
+/// tolerances \f$10^{-2} \ldots 10^{-12}\f$ for dopri5, until the error reaches \p floor or a
+/// run takes longer than \p budget seconds.
+std::vector<Point> sweep(const SimProblem& p, const soa::State& ref, Integrator method,
+                         double floor, double budget, double min_seconds) {
+  std::vector<Point> points;
+  soa::SimulationOptions opt;
+  opt.method = method;
+  for (int j = 0; j < 40; ++j) {
+    Point pt;
+    pt.scene = p.name;
+    pt.method = method;
+    if (method == Integrator::DormandPrince) {
+      pt.tol = std::pow(10.0, -2 - j);
+      if (pt.tol < 1e-13) break;
+      opt.tol = pt.tol;
+    } else {
+      pt.h = p.t_end / (8.0 * std::pow(2.0, j));
+      opt.dt = pt.h;
+    }
+    pt.r = run(p, opt, min_seconds);
+    pt.error = pt.r.ok ? state_error(pt.r.x, ref) : kNaN;
+    points.push_back(pt);
+    if (pt.r.ok && (pt.error < floor || pt.r.seconds > budget)) break;
+  }
+  return points;
+}
+
+/// The observed order: the slope of \f$\log e\f$ against \f$\log h\f$ (fixed steps), or
+/// against \f$-\log(\text{evaluations})\f$ (dopri5: work grows as \f$h^{-1}\f$), fitted to
+/// the three smallest errors above \p lo (the reference's accuracy) and below 1: the
+/// asymptotic range, where the leading error term dominates (at coarser steps the arm's RK4
+/// error still falls as \f$h^{4.8}\f$).
+double observed_order(const std::vector<Point>& pts, double lo) {
+  std::vector<double> x, y;
+  for (const Point& pt : pts) {
+    // dopri5 at loose tolerances takes the few steps its start and growth limit allow,
+    // whatever the tolerance: only runs of at least 16 steps are in its asymptotic range.
+    if (!pt.r.ok || !(pt.error > lo && pt.error < 1) ||
+        (pt.method == Integrator::DormandPrince && pt.r.summary.steps < 16))
+      continue;
+    x.push_back(pt.method == Integrator::DormandPrince ? 1.0 / double(pt.r.summary.evaluations)
+                                                       : pt.h);
+    y.push_back(pt.error);
+  }
+  if (x.size() > 3) {
+    x.erase(x.begin(), x.end() - 3);
+    y.erase(y.begin(), y.end() - 3);
+  }
+  return fitted_slope(x, y, lo, 1);
+}
+
+/// Whether dopri5's steps were set by stability rather than accuracy: its work grew less
+/// than four-fold from the loosest tolerance to the tightest (on the stiff chain the
+/// controller holds \f$h|\lambda|_{\max}\f$ near the stability boundary at any tolerance).
+bool stability_limited(const std::vector<Point>& pts) {
+  long first = 0, last = 0;
+  for (const Point& pt : pts)
+    if (pt.r.ok) (first == 0 ? first : last) = pt.r.summary.evaluations;
+  return first > 0 && last > 0 && double(last) < 4.0 * double(first);
+}
+
+/// The smallest error among the runs that took at most \p seconds.
+double error_within(const std::vector<Point>& pts, double seconds) {
+  double best = kNaN;
+  for (const Point& pt : pts)
+    if (pt.r.ok && pt.r.seconds <= seconds && !(pt.error >= best)) best = pt.error;
+  return best;
+}
+
+void work_precision_section(Checklist& checks, const fs::path& out, bool quick, Summary& summary) {
+  checks.section("1. Error against run time (work-precision)");
+  /// The problems: the default scenes from the states their files give, and the stiff-spring
+  /// chain of section 3 at a moderate stiffness ratio (its fastest mode ~380 rad/s, so the
+  /// explicit methods are stable only below a step set by stiffness, not accuracy).
+  std::vector<SimProblem> problems;
+  try {
+    problems.push_back(default_scene("double_pendulum", "double pendulum", quick ? 0.5 : 2));
+    problems.push_back(default_scene("arm7", "seven-joint arm", quick ? 0.25 : 1));
+    problems.push_back(default_scene("chain50", "50-link chain", quick ? 0.05 : 0.5));
+  } catch (const std::exception& e) {
+    checks.check(std::string("default scenes load (") + e.what() + ")", false);
+  }
+  problems.push_back(stiff_chain(1e4, 6, 0.02, quick ? 0.05 : 0.2));
+  const double budget = quick ? 0.02 : 0.5, min_seconds = quick ? 0 : 0.02;
+
+  std::ofstream csv(out / "l8_sim_work_precision.csv");
+  csv << "scene,method,h,tol,steps,evaluations,seconds,error,energy_drift,diagnostic\n";
+  std::ofstream orders_gp(out / "l8_sim_orders.gp");
+  orders_gp << "# written by lesson08_simulation: the fitted orders, o_SCENE_METHODINDEX\n";
+  std::ofstream md(out / "l8_sim_orders.md");
+  md << "| Scene | horizon | reference agreement |";
+  for (Integrator m : kMethods) md << " " << soa::integrator_name(m) << " |";
+  md << "\n|---|---|---|";
+  for (std::size_t i = 0; i < kMethods.size(); ++i) md << "---|";
+  md << "\n";
+
+  for (const SimProblem& p : problems) {
+    /// The reference: dopri5 at tolerance 1e-13, checked against RK4 at 20 000 and 40 000
+    /// steps extrapolated; errors below 10 times their agreement are not used in the fits.
+    const Reference ref = reference(p, 1e-13, quick ? 4000 : 20000);
+    if (!ref.diagnostic.empty()) {
+      checks.check(p.name + ": reference solution (" + ref.diagnostic + ")", false);
+      continue;
+    }
+    std::printf(
+        "  %-16s T = %g s, n = %d: reference dopri5(1e-13) %ld steps, agrees with RK4 "
+        "to %.2e\n",
+        p.name.c_str(), p.t_end, p.m.n(), ref.steps, ref.agreement);
+    checks.check(p.name + ": reference agrees with a second method (RK4)", ref.agreement, 1e-8);
+    const double lo = std::max(10 * ref.agreement, 1e-12);
+    md << "| " << p.title << " | " << num(p.t_end, "%g") << " s | " << num(ref.agreement, "%.1e")
+       << " |";
+    for (std::size_t i = 0; i < kMethods.size(); ++i) {
+      const Integrator method = kMethods[i];
+      const std::vector<Point> pts = sweep(p, ref.x, method, lo, budget, min_seconds);
+      for (const Point& pt : pts) {
+        const soa::SimulationSummary& s = pt.r.summary;
+        const double drift = s.max_energy_drift / std::max(1.0, std::abs(s.energy0));
+        csv << p.name << "," << soa::integrator_name(method) << "," << num(pt.h) << ","
+            << num(pt.tol) << "," << (pt.r.ok ? std::to_string(s.steps) : "") << ","
+            << (pt.r.ok ? std::to_string(s.evaluations) : "") << "," << num(pt.r.seconds) << ","
+            << num(pt.error) << "," << (pt.r.ok ? num(drift) : "") << ","
+            << csv_field(pt.r.ok ? "" : pt.r.diagnostic) << "\n";
+      }
+      const bool limited = method == Integrator::DormandPrince && stability_limited(pts);
+      const double order = limited ? kNaN : observed_order(pts, lo);
+      const int expected = method == Integrator::DormandPrince ? 5 : soa::integrator_order(method);
+      summary.of(method).orders.emplace_back(p.name, order);
+      if (p.name == summary.cost_scene)
+        summary.of(method).error_at_cost = error_within(pts, summary.cost_seconds);
+      orders_gp << "o_" << p.name << "_" << i + 1 << " = "
+                << (std::isnan(order) ? std::string("NaN") : num(order, "%.2f")) << "\n";
+      md << " " << (limited ? std::string("stability-limited") : num(order, "%.2f")) << " |";
+      std::printf("    %-17s %2zu runs, order %5.2f (expected %d)\n", soa::integrator_name(method),
+                  pts.size(), order, expected);
+      /// The order found must be the method's: within 0.3 for the fixed-step methods, 4.5 to
+      /// 5.7 for dopri5 (its controller also adapts the step to the solution). On the stiff
+      /// chain explicit Euler is stable only at steps too small for the time budget to reach
+      /// its asymptotic range, and dopri5's step is set by stability (no fit: not checked).
+      if (quick) continue;
+      const bool fits = method == Integrator::DormandPrince ? order >= 4.5 && order <= 5.7
+                                                            : std::abs(order - expected) <= 0.3;
+      if (p.name == "stiff_chain" && (std::isnan(order) || method == Integrator::Euler)) continue;
+      checks.check(p.name + ": " + soa::integrator_name(method) + " converges at its order (" +
+                       num(order, "%.2f") + ")",
+                   fits);
+    }
+    md << "\n";
+  }
+  md << "\nOrder found: slope of log(error) against log(h); for dopri5 against "
+        "log(1/evaluations). Expected: euler 1, symplectic-euler 1, rk4 4, dopri5 5, "
+        "implicit-midpoint 2.\n";
+  checks.check("l8_sim_work_precision.csv, l8_sim_orders.md written", bool(csv) && bool(md));
+  csv.close();  // gnuplot reads them next
+  orders_gp.close();
+  checks.check("figures written: l8_sim_wp_*.png",
+               soa::lesson::plot("l8_sim_work_precision.gp", out, "l8_sim_wp_arm7.png"));
+}
+
+// ---------------------------------------------------------------------------------------
+// 2. Energy over a long horizon.
+
+/// A pendulum of one link (the double pendulum's upper link alone): its mass matrix is
+/// constant, so symplectic Euler in \f$(\theta, \beta)\f$ is a symplectic map.
+SimProblem pendulum(double t_end) {
+  SimProblem p = default_scene("double_pendulum", "pendulum", t_end);
+  std::vector<soa::Body> one = {p.m.body(p.m.n())};
+  one[0].name = "link";
+  p.m = soa::Model::from_base_first(one);
+  p.m.gravity = soa::Vec3<double>(0, 0, -9.81);
+  p.x0 = soa::State{soa::VecX<double>::Constant(1, 1.0), soa::VecX<double>::Zero(1)};
+  p.name = "pendulum";
+  return p;
+}
+
+/// \f$|E(t) - E(0)|\f$ along one run, sampled as the maximum over windows that grow
+/// geometrically in time (so that a log-log plot shows both the bounded oscillation and a
+/// drift).
+struct EnergyTrace {
+  std::vector<double> t, drift;
+  double first_half = 0, second_half = 0;  ///< max |E - E0| over each half of the horizon
+  std::string diagnostic;
+};
+
+EnergyTrace energy_trace(const SimProblem& p, Integrator method, double h) {
+  EnergyTrace tr;
+  soa::ChainSystemT<double> sys(p.m, p.f_ext);
+  soa::ChainSystemT<double> meter(p.m, p.f_ext);  // energy evaluations, not counted as work
+  soa::State x = p.x0;
+  soa::SimulationOptions opt;
+  opt.method = method;
+  opt.dt = h;
+  opt.t_end = p.t_end;
+  const double E0 = meter.energy(x);
+  double window_end = 10 * h, window_max = 0;
+  try {
+    soa::simulate(sys, x, opt, [&](double t, const soa::State& xs) {
+      const double d = std::abs(meter.energy(xs) - E0);
+      window_max = std::max(window_max, d);
+      (t <= p.t_end / 2 ? tr.first_half : tr.second_half) =
+          std::max(t <= p.t_end / 2 ? tr.first_half : tr.second_half, d);
+      if (t >= window_end) {
+        tr.t.push_back(t);
+        tr.drift.push_back(window_max);
+        window_max = 0;
+        window_end *= 1.1;
+      }
+    });
+  } catch (const soa::Error& e) {
+    tr.diagnostic = e.what();
+  }
+  return tr;
+}
+
+void energy_section(Checklist& checks, const fs::path& out, bool quick) {
+  checks.section("2. Energy over a long horizon");
+  /// The pendulum and the double pendulum released from their files' states, over 2000 s
+  /// (about a thousand swings) at h = 0.02 s. Symplectic Euler is a symplectic map where the
+  /// mass matrix is constant (the pendulum), and implicit midpoint is symmetric (time
+  /// reversible): their energy errors stay bounded. RK4 is neither: its energy error
+  /// accumulates, about linearly in time.
+  const double T = quick ? 20 : 2000, h = 0.02;
+  std::vector<SimProblem> problems = {pendulum(T),
+                                      default_scene("double_pendulum", "double pendulum", T)};
+  std::ofstream csv(out / "l8_sim_energy.csv");
+  csv << "scene,method,t,energy_drift\n";
+  for (const SimProblem& p : problems) {
+    for (Integrator method :
+         {Integrator::SymplecticEuler, Integrator::ImplicitMidpoint, Integrator::RK4}) {
+      const EnergyTrace tr = energy_trace(p, method, h);
+      for (std::size_t i = 0; i < tr.t.size(); ++i)
+        csv << p.name << "," << soa::integrator_name(method) << "," << num(tr.t[i], "%.6g") << ","
+            << num(tr.drift[i]) << "\n";
+      const double growth = tr.second_half / std::max(tr.first_half, 1e-300);
+      std::printf("  %-16s %-17s max |E - E0|: first half %.3e J, second half %.3e J (x %.2f)%s\n",
+                  p.name.c_str(), soa::integrator_name(method), tr.first_half, tr.second_half,
+                  growth, tr.diagnostic.empty() ? "" : (" " + tr.diagnostic).c_str());
+      if (quick) continue;
+      /// Bounded: the second half's largest error at most 1.3 times the first half's (a
+      /// drift linear in time doubles it). Drifting: at least 1.5 times.
+      const bool bounded = method != Integrator::RK4;
+      if (bounded && method == Integrator::SymplecticEuler && p.name != "pendulum") continue;
+      checks.check(p.name + ": " + soa::integrator_name(method) + " energy error " +
+                       (bounded ? "bounded" : "drifts") + " (x " + num(growth, "%.2f") + ")",
+                   tr.diagnostic.empty() && (bounded ? growth <= 1.3 : growth >= 1.5));
+    }
+  }
+  checks.check("l8_sim_energy.csv written", bool(csv));
+  csv.close();
+  checks.check("figure written: l8_sim_energy.png",
+               soa::lesson::plot("l8_sim_energy.gp", out, "l8_sim_energy.png"));
+}
+
+// ---------------------------------------------------------------------------------------
+// 5. The summary page.
+
+void summary_section(Checklist& checks, const fs::path& out, const Summary& s) {
+  checks.section("5. Summary");
+  std::ofstream md(out / "l8_sim_summary.md");
+  md << "| Method | order | order found (double pendulum, arm, chain, stiff chain) | error within "
+     << num(s.cost_seconds * 1e3, "%g") << " ms (" << s.cost_scene
+     << ") | largest stable step, stiff chain: found / theory |\n|---|---|---|---|---|\n";
+  for (const MethodSummary& m : s.methods) {
+    md << "| " << soa::integrator_name(m.method) << " | "
+       << (m.method == Integrator::DormandPrince ? 5 : soa::integrator_order(m.method)) << " | ";
+    for (std::size_t i = 0; i < m.orders.size(); ++i)
+      md << (i ? ", " : "")
+         << (std::isnan(m.orders[i].second) ? "-" : num(m.orders[i].second, "%.2f"));
+    md << " | " << (std::isnan(m.error_at_cost) ? "-" : num(m.error_at_cost, "%.1e")) << " | ";
+    if (!m.stiff_note.empty())
+      md << m.stiff_note;
+    else if (!std::isnan(m.h_stable))
+      md << num(m.h_stable, "%.3g") << " s / " << num(m.h_theory, "%.3g") << " s";
+    else
+      md << "-";
+    md << " |\n";
+  }
+  if (!s.stiff_chain.empty()) md << "\nStable steps on the " << s.stiff_chain << ".\n";
+  md << "\nExtreme cases of lessons 5-8 simulated: " << s.extreme_solved << " of "
+     << s.extreme_total << " runs finished; diagnosed rather than solved:\n\n";
+  if (s.diagnosed.empty()) md << "- none\n";
+  for (const std::string& d : s.diagnosed) md << "- " << d << "\n";
+  checks.check("l8_sim_summary.md written", bool(md));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
+    return 2;
+  }
+  const fs::path out = argv[1];
+  const bool quick = argc > 2 && std::strcmp(argv[2], "--quick") == 0;
+  fs::create_directories(out);
+  std::printf("Lesson 8: simulation report%s (flags: %s)\n", quick ? " (--quick)" : "",
+              SOA_TIMING_FLAGS);
+  Checklist checks;
+  Summary summary;
+  try {
+    work_precision_section(checks, out, quick, summary);
+    energy_section(checks, out, quick);
+    stiff_section(checks, out, quick, summary);
+    extreme_section(checks, out, quick, summary);
+    summary_section(checks, out, summary);
+  } catch (const std::exception& e) {
+    checks.check(std::string("the report ran through (") + e.what() + ")", false);
+  }
+  return checks.finish();
+}
