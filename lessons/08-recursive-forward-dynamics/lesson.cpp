@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "chain_builder.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "soa/chain.hpp"
@@ -66,35 +67,13 @@ const double kEps = soa::eps<double>();
 
 /// ## Helpers
 ///
-/// A body of a chain (mass, centre of mass \f$p\f$, principal moments about it), placed on
-/// its inboard body at \f${}^{O_{k+1}}T_{O_k^+}\f$, with its hinge; as in lessons 4 and 6.
-Body make_body(const std::string& name, const SpatialInertia& M, const Pose& placement,
-               const soa::Hinge& hinge) {
-  Body b;
-  b.name = name;
-  b.M = M;
-  b.placement = placement;
-  b.hinge = hinge;
-  return b;
-}
-
-SpatialInertia inertia(double m, const Vec3& p, const Vec3& J_principal) {
-  return SpatialInertia::from_cm(m, p, J_principal.asDiagonal().toDenseMatrix());
-}
-
-soa::Hinge hinge(HingeType type, const Vec3& axis, const Vec3& axis2 = Vec3::UnitY(),
-                 double pitch = 0) {
-  soa::Hinge h;
-  h.type = type;
-  h.axis = axis.normalized();
-  h.axis2 = axis2.normalized();
-  h.pitch = pitch;
-  return h;
-}
-
-Pose at(const Vec3& rotation_vector, const Vec3& offset) {
-  return Pose(soa::exp_so3<double>(rotation_vector), offset);
-}
+/// The chain-building helpers of `lessons/common/chain_builder.hpp`: make_body(), inertia()
+/// (mass, centre of mass \f$p\f$, principal moments about it), hinge() and at() (a pose from a
+/// rotation vector and an offset).
+using soa::lesson::at;
+using soa::lesson::hinge;
+using soa::lesson::inertia;
+using soa::lesson::make_body;
 
 /// A chain with every hinge type of lesson 3, from the base out: a free hinge (a floating
 /// base), a spherical joint, a universal joint, a helical joint, a locked hinge (its body is
