@@ -3,13 +3,17 @@
 #   make test       library tests, lesson checks, exercise tests against the solutions
 #   make exercises  the exercise tests against exercises/ (a pass/fail table; never fails)
 #   make docs       Doxygen course notes (offline math, gnuplot figures) in build/docs/html
-#   make bench      Google Benchmark results in build/bench/
-# Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug.
+#   make bench      Google Benchmark results and the soa command's scale (cli_scale) in build/bench/
+# Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug (in
+# build/debug), TESTS=regex (make test runs only the ctest tests it matches).
 
 BUILD_TYPE ?= Release
 ifeq ($(SANITIZE),1)
   BUILD_DIR ?= build/sanitize
   SAN_FLAG := -DSOA_SANITIZE=ON
+else ifeq ($(BUILD_TYPE),Debug)
+  BUILD_DIR ?= build/debug
+  SAN_FLAG := -DSOA_SANITIZE=OFF
 else
   BUILD_DIR ?= build/release
   SAN_FLAG := -DSOA_SANITIZE=OFF
@@ -59,7 +63,7 @@ run: build
 	cmake --build $(BUILD_DIR) --target tour
 
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure --no-tests=error -j $(JOBS)
+	cd $(BUILD_DIR) && ctest --output-on-failure --no-tests=error -j $(JOBS) $(if $(TESTS),-R '$(TESTS)')
 
 # One table per lesson: each exercise pass / FAIL / not done. Never stops the build.
 exercises: configure

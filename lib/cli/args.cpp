@@ -18,29 +18,11 @@ constexpr VerbInfo kVerbs[] = {
     {Verb::Kinematics, "kinematics", "--q, --qd, --qdd, --body"},
     {Verb::Jacobian, "jacobian", "--q, --body"},
     {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd"},
-    {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau"},
-    {Verb::MassMatrix, "mass-matrix", "--q, --inverse"},
-    {Verb::Simulate, "simulate", "--q, --qd, --integrator, --dt, --tol, --t-end, --out"},
+    {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check"},
+    {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --check"},
+    {Verb::Simulate, "simulate",
+     "--q, --qd, --integrator, --dt, --tol, --t-end, --out, --every, --out-dt"},
 };
-
-bool takes(Verb v, const std::string& option) {
-  switch (v) {
-    case Verb::Kinematics:
-      return option == "--q" || option == "--qd" || option == "--qdd" || option == "--body";
-    case Verb::Jacobian:
-      return option == "--q" || option == "--body";
-    case Verb::InverseDynamics:
-      return option == "--q" || option == "--qd" || option == "--qdd";
-    case Verb::ForwardDynamics:
-      return option == "--q" || option == "--qd" || option == "--tau";
-    case Verb::MassMatrix:
-      return option == "--q" || option == "--inverse";
-    case Verb::Simulate:
-      return option == "--q" || option == "--qd" || option == "--integrator" || option == "--dt" ||
-             option == "--tol" || option == "--t-end" || option == "--out";
-  }
-  return false;
-}
 
 std::string trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t");
@@ -49,6 +31,15 @@ std::string trim(const std::string& s) {
 }
 
 }  // namespace
+
+bool takes(Verb v, const std::string& option) {
+  for (const VerbInfo& i : kVerbs) {
+    if (i.verb != v) continue;
+    const std::string list = ", " + std::string(i.options) + ",";
+    return list.find(", " + option + ",") != std::string::npos;
+  }
+  return false;
+}
 
 const char* verb_name(Verb v) {
   for (const VerbInfo& i : kVerbs)
@@ -89,10 +80,10 @@ Args parse_args(const std::vector<std::string>& argv) {
           if (info.verb == v) options = info.options;
         throw UsageError(verb + " does not take " + option + " (it takes " + options + ")");
       };
-      if (option == "--inverse") {  // a flag
+      if (option == "--inverse" || option == "--check") {  // flags
         if (!takes(v, option)) refuse();
-        if (eq != std::string::npos) throw UsageError("--inverse takes no value");
-        a.inverse = true;
+        if (eq != std::string::npos) throw UsageError(option + " takes no value");
+        (option == "--inverse" ? a.inverse : a.check) = true;
         continue;
       }
       std::optional<std::string>* slot = option == "--q"            ? &a.q
@@ -104,6 +95,8 @@ Args parse_args(const std::vector<std::string>& argv) {
                                          : option == "--tol"        ? &a.tol
                                          : option == "--t-end"      ? &a.t_end
                                          : option == "--out"        ? &a.out
+                                         : option == "--every"      ? &a.every
+                                         : option == "--out-dt"     ? &a.out_dt
                                          : option == "--body"       ? &a.body
                                                                     : nullptr;
       if (!slot) throw UsageError("unknown option \"" + option + "\"");

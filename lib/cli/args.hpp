@@ -24,10 +24,14 @@ struct Args {
   std::optional<Verb> verb;  ///< absent only with a top-level --help
   std::string scene;         ///< the scene file
   std::optional<std::string> q, qd, qdd, tau, body;  ///< option values as given
-  /// simulate: --integrator, --dt, --tol, --t-end, --out
-  std::optional<std::string> integrator, dt, tol, t_end, out;
+  /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
+  std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
   bool inverse = false;  ///< mass-matrix --inverse
+  bool check = false;    ///< forward-dynamics, mass-matrix --check: the dense checks at any size
 };
+
+/// True when the verb \p v takes \p option ("--q", "--inverse", ...).
+bool takes(Verb v, const std::string& option);
 
 /// Parses the arguments after the program name; throws UsageError.
 Args parse_args(const std::vector<std::string>& argv);

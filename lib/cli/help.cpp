@@ -2,6 +2,11 @@
 // codes. The README's "The soa command" section says the same, shorter.
 #include "help.hpp"
 
+#include <string>
+#include <vector>
+
+#include "verbs.hpp"
+
 namespace soa::cli {
 namespace {
 
@@ -12,34 +17,76 @@ Usage:
   soa kinematics       SCENE.json [--q V,...] [--qd V,...] [--qdd V,...] [--body NAME]
   soa jacobian         SCENE.json [--q V,...] [--body NAME]
   soa inverse-dynamics SCENE.json [--q V,...] [--qd V,...] [--qdd V,...]
-  soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...]
-  soa mass-matrix      SCENE.json [--q V,...] [--inverse]
+  soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...] [--check]
+  soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--check]
   soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
-                       [--out traj.csv] [--q V,...] [--qd V,...]
+                       [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
   soa --help
   soa VERB --help
 
 The scene file gives the chain and its state; its format is on the notes' page "Scene
-files" (docs/scenes.md). Results are JSON on stdout.
+files" (docs/scenes.md); at most 1 GiB. Results are JSON on stdout, written once they
+are complete (and every write checked).
 
 )";
 
-constexpr const char* kState = R"(State:
-  The state is the scene's (each body's "q", "qd", "qdd"; the neutral configuration at
-  rest where absent). --q, --qd, --qdd (and --tau, zero when absent) replace it: comma-separated numbers, given as
-  --q 0.1,0.2 or --q=0.1,0.2, listing the bodies in the order of the file (base first),
-  each hinge's coordinates in turn:
-    hinge       --q                                   --qd, --qdd, --tau
-    revolute    angle (rad)                           rate
-    prismatic   offset (m)                            rate
-    helical     angle (rad)                           rate
-    universal   two angles                            two rates
-    spherical   quaternion x, y, z, w                 angular velocity (3)
-    free        quaternion x, y, z, w, position (3)   angular, linear velocity (6)
-    locked      nothing                               nothing
-  Quaternions must have norm 1 within 1e-6.
-
-)";
+/// The "State:" block of a verb's help: only the options the verb takes (all of them in
+/// soa --help).
+std::string state_help(std::optional<Verb> verb) {
+  auto has = [&](const char* option) { return !verb || takes(*verb, option); };
+  std::vector<std::string> rates;  // the options that give one number per coordinate of qd
+  for (const char* o : {"--qd", "--qdd", "--tau"})
+    if (has(o)) rates.push_back(o);
+  std::string given = "--q";
+  for (std::size_t i = 0; i < rates.size(); ++i)
+    given += (i + 1 == rates.size() ? " and " : ", ") + rates[i];
+  std::string rate_head;
+  for (std::size_t i = 0; i < rates.size(); ++i) rate_head += (i ? ", " : "") + rates[i];
+  const bool tau = has("--tau");
+  const std::string paragraph =
+      "The state is the scene's (each body's \"q\"" + std::string(has("--qd") ? ", \"qd\"" : "") +
+      (has("--qdd") ? ", \"qdd\"" : "") + "; the neutral configuration at rest where absent). " +
+      given + (tau ? " (--tau zero when absent)" : "") +
+      (rates.empty() ? " replaces" : " replace") +
+      " it: comma-separated numbers, given as --q 0.1,0.2 or --q=0.1,0.2, listing the bodies "
+      "in the order of the file (base first), each hinge's coordinates in turn:";
+  std::string text = "State:\n", line;  // the paragraph wrapped at 88 columns
+  std::size_t start = 0;
+  while (start < paragraph.size()) {
+    std::size_t end = paragraph.find(' ', start);
+    if (end == std::string::npos) end = paragraph.size();
+    const std::string word = paragraph.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > 86)
+      text += "  " + line + "\n", line.clear();
+    line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
+  }
+  text += "  " + line + "\n";
+  struct Row {
+    const char *hinge, *q, *rate;
+  };
+  const Row table[] = {
+      {"hinge", "--q", ""},
+      {"revolute", "angle (rad)", "rate"},
+      {"prismatic", "offset (m)", "rate"},
+      {"helical", "angle (rad)", "rate"},
+      {"universal", "two angles", "two rates"},
+      {"spherical", "quaternion x, y, z, w", "angular velocity (3)"},
+      {"free", "quaternion x, y, z, w, position (3)", "angular, linear velocity (6)"},
+      {"locked", "nothing", "nothing"}};
+  for (const Row& r : table) {
+    std::string l = "    " + std::string(r.hinge);
+    l.resize(16, ' ');
+    l += r.q;
+    if (!rates.empty()) {
+      l.resize(54, ' ');
+      l += &r == table ? rate_head : std::string(r.rate);
+    }
+    while (!l.empty() && l.back() == ' ') l.pop_back();
+    text += l + "\n";
+  }
+  return text + "  Quaternions must have norm 1 within 1e-6.\n\n";
+}
 
 constexpr const char* kFrames = R"(Frames and vectors:
   Each body's frame is its hinge frame O_k. Spatial vectors are angular first, [w; v],
@@ -48,11 +95,23 @@ constexpr const char* kFrames = R"(Frames and vectors:
 
 )";
 
-constexpr const char* kExit = R"(Exit codes:
+/// The "Exit codes:" block; the output file and the signals only where simulate is.
+std::string exit_help(std::optional<Verb> verb) {
+  const bool sim = !verb || *verb == Verb::Simulate;
+  return std::string(R"(Exit codes:
   0  the result is on stdout
-  1  bad scene file or bad input: one line on stderr, "FILE: WHERE: PROBLEM"
+  1  bad scene file or bad input: one line on stderr, "FILE: WHERE: PROBLEM"; out of
+     memory: "FILE: out of memory while building ..."; an output that cannot be written:
+     )") +
+         (sim ? "\"--out traj.csv: No space left on device\" or \"stdout: ...\""
+              : "\"stdout: No space left on device\"") +
+         R"(
   2  usage error (unknown verb or option, missing scene file): one line on stderr
-)";
+)" +
+         (sim ? "  130, 143  simulate stopped by SIGINT (Ctrl-C) or SIGTERM: the rows so far are "
+                "kept\n"
+              : "");
+}
 
 const std::string& full_help() {
   static const std::string text = std::string(kUsage) + R"(Verbs:
@@ -64,7 +123,8 @@ const std::string& full_help() {
                     with --inverse its inverse
   simulate          integrate the motion over time, trajectory as CSV
 
-)" + kState + kFrames + kExit;
+)" + state_help(std::nullopt) + kFrames +
+                                  exit_help(std::nullopt);
   return text;
 }
 
@@ -81,8 +141,8 @@ The scatter recursions base to tip (lesson 3). For every body in file order (or 
   "acceleration"  alpha, the inertial time derivative of V at qdd, frame coordinates
                   (gravity not included: the true acceleration)
 
-)") + kState +
-      kExit;
+)") + state_help(Verb::Kinematics) +
+      exit_help(Verb::Kinematics);
   return text;
 }
 
@@ -95,7 +155,7 @@ V = J qd with V = [w; v] the frame's spatial velocity in its own coordinates (le
 J = B* phi* H*). In JSON: "J" as 6 rows (wx, wy, wz, vx, vy, vz), one column per
 coordinate of qd in file order ("columns" names them).
 
-)") + kState + kExit;
+)") + state_help(Verb::Jacobian) + exit_help(Verb::Jacobian);
   return text;
 }
 
@@ -109,40 +169,54 @@ and dampers. In JSON: "hinge_forces", T per body (the torque of a revolute hinge
 of a prismatic one, ...), and "T", the whole vector in file order ("columns" names its
 entries).
 
-)") + kState +
-      kExit;
+)") + state_help(Verb::InverseDynamics) +
+      exit_help(Verb::InverseDynamics);
   return text;
 }
 
 const std::string& forward_dynamics_help() {
   static const std::string text =
-      std::string(R"(Usage: soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...]
+      std::string(
+          R"(Usage: soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...] [--check]
 
 The articulated body forward dynamics (lesson 8, O(N)): the accelerations qdd of the chain
 at the state (q, qd) under the hinge forces tau (zero when absent), with the scene's
 gravity, external forces, springs and dampers. In JSON: "accelerations" per body, "qdd" in
-file order ("columns" names its entries), and "check": the relative difference from a
-second method, M qdd = tau - C solved with the mass matrix of lesson 5 and Eigen's LDLT.
+file order ("columns" names its entries), and "check", two checks that are not the answer:
+  "round_trip_residual"  |ID(q, qd, qdd) - tau| / (|tau| + |C(q, qd)|), the inverse
+                         dynamics of the result (O(N)): how well qdd satisfies the
+                         equations of motion
+  "dense_difference"     |qdd - qdd_dense| / |qdd|, qdd_dense from M qdd = tau - C with the
+                         mass matrix of lesson 5 and Eigen's LDLT, whose own error is about
+                         eps cond(M) ("dense_cond_estimate"): a 200-link chain shows 1e-10
+                         here while the O(N) answer is right to 1e-15. O(n_v^3): run up to
+                         n_v = 2000, beyond only with --check ("dense_skipped" says so).
 A hinge whose articulated inertia D(k) is singular (a massless tip, say) is an error
 naming the body.
 
-)") + kState +
-      kExit;
+)") + state_help(Verb::ForwardDynamics) +
+      exit_help(Verb::ForwardDynamics);
   return text;
 }
 
 const std::string& mass_matrix_help() {
-  static const std::string text = std::string(
-                                      R"(Usage: soa mass-matrix SCENE.json [--q V,...] [--inverse]
+  static const std::string text =
+      std::string(
+          R"(Usage: soa mass-matrix SCENE.json [--q V,...] [--inverse] [--check]
 
 The mass matrix M = H phi M phi* H* at q, computed in O(N^2) from the composite rigid body
 inertias (lesson 5: M(i,i) = H(i) R(i) H*(i), M(i,j) = H(i) phi(i,j) R(j) H*(j)). In JSON:
 "M" as rows, rows and columns in file order ("columns" names them), "symmetric"
 (|M - M*| <= 1e-12 max|M|) and "positive_definite" (a Cholesky factorization succeeds).
 With --inverse, also "Minv", the inverse computed in O(N^2) without forming M (lesson 7:
-M^-1 = [I - H psi K]* D^-1 [I - H psi K]), and "identity_residual", max|M Minv - I|.
+M^-1 = [I - H psi K]* D^-1 [I - H psi K]), "probe_residual", the largest
+|M (Minv x) - x| / |x| over three random x (O(n_v^2)), and "identity_residual",
+max|M Minv - I|. The Cholesky factorization and M Minv cost O(n_v^3): they run up to
+n_v = 2000, beyond only with --check ("skipped" says so). Chains of more than 20000
+coordinates are refused (the matrix alone would be 3.2 GB).
 
-)") + kState + kExit;
+)") + state_help(Verb::MassMatrix) +
+      exit_help(Verb::MassMatrix);
   return text;
 }
 
@@ -150,7 +224,7 @@ const std::string& simulate_help() {
   static const std::string text =
       std::string(
           R"(Usage: soa simulate SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
-                    [--out traj.csv] [--q V,...] [--qd V,...]
+                    [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
 
 Integrates the scene's forward dynamics (lesson 8) from its state (or --q, --qd) over
 [0, T] (T = 1 s when --t-end is absent), with gravity, external forces, springs and
@@ -161,15 +235,23 @@ dampers. Integrators (--integrator, rk4 when absent):
   dopri5             Dormand-Prince 5(4), adaptive, --tol (local error, rel. and abs.)
   implicit-midpoint  implicit midpoint, order 2, A-stable (stiff springs), --dt
 Fixed steps divide [0, T] evenly. Spherical and free hinges move on the unit quaternions
-(q <- q exp(u), Runge-Kutta-Munthe-Kaas). --out writes one CSV line per step: t, q and qd
-in file order, the energy and the largest |norm(quaternion) - 1|. On stdout, JSON: steps,
-rejected steps, forward-dynamics evaluations, wall time, energy at start and end and its
-largest drift, and the final q, qd. A progress bar goes to stderr for long runs when it is
-a terminal. A run that blows up stops (exit code 1) with the time, the step and the
-estimated stiffness x step.
+(q <- q exp(u), Runge-Kutta-Munthe-Kaas); at most 2^53 fixed steps. --tol below 1.
+--out writes one CSV line per step: t, q and qd in file order, the energy and the largest
+|norm(quaternion) - 1| (fields holding a comma, a quote or a line break are quoted as RFC
+4180 says). --every K writes every K-th step instead, --out-dt H the first step at or
+after each multiple of H; the last state is always written. The file appears when the
+run ends, complete (it is written beside the target and renamed), never the scene file.
+On stdout, JSON: steps, rejected steps, forward-dynamics evaluations, wall time, energy
+at start and end and its largest drift, the final q, qd, and the rows written. A progress
+bar goes to stderr for long runs when it is a terminal.
+A run that blows up stops (exit code 1) with the time, the step and the estimated
+stiffness x step; the rows before the blow-up are kept in the --out file and the message
+says so. Ctrl-C (SIGINT) or SIGTERM stops the run at the end of a step: the rows so far
+are kept, the summary on stdout has "interrupted" with the time, a line on stderr says
+so, exit code 130 or 143 (a second Ctrl-C ends the program at once, without the file).
 
-)") + kState +
-      kExit;
+)") + state_help(Verb::Simulate) +
+      exit_help(Verb::Simulate);
   return text;
 }
 

@@ -1,14 +1,22 @@
 // `soa`: serial-chain computations on a scene file, JSON on stdout. This file dispatches:
 // command line (args.cpp), scene (soa_scene), state, verb (verbs.cpp), output (json_out.cpp).
-// Exit codes: 0 ok, 1 bad scene or input, 2 usage error (help.cpp).
+// Exit codes: 0 ok, 1 bad scene or input, 2 usage error (help.cpp), 130/143 a simulation
+// stopped by SIGINT/SIGTERM. Results are computed, then checked (every number finite), then
+// written; every write is checked.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "args.hpp"
 #include "help.hpp"
 #include "json_out.hpp"
+#include "output.hpp"
 #include "soa/scene.hpp"
 #include "verbs.hpp"
 
@@ -74,44 +82,84 @@ SimulationOptions simulation_options(const Args& a) {
                 " needs a step (e.g. --dt 1e-3)");
   if (a.dt && !(o.dt > 0)) throw Error("--dt: the step must be > 0");
   if (a.tol && !(o.tol > 0)) throw Error("--tol: the tolerance must be > 0");
+  if (a.tol && !(o.tol < 1))
+    throw Error("--tol: a relative tolerance must be below 1 (got " + *a.tol + ")");
   if (!(o.t_end >= 0)) throw Error("--t-end: the end time must be >= 0");
   return o;
 }
 
+/// --out, --every, --out-dt of simulate.
+OutputOptions output_options(const Args& a) {
+  OutputOptions o;
+  if (a.out) o.csv_path = *a.out;
+  if (a.every && a.out_dt) throw Error("--every, --out-dt: give one of them, not both");
+  if ((a.every || a.out_dt) && !a.out)
+    throw Error(std::string(a.every ? "--every" : "--out-dt") +
+                ": needs --out, the trajectory file it thins out");
+  if (a.every) {
+    const double k = number_of(a.every, "--every", 1);
+    if (!(k >= 1 && k == std::floor(k) && k <= 1e15))
+      throw Error("--every: expected a whole number of steps >= 1, got " + *a.every);
+    o.every = long(k);
+  }
+  if (a.out_dt) {
+    o.out_dt = number_of(a.out_dt, "--out-dt", 0);
+    if (!(o.out_dt > 0)) throw Error("--out-dt: the interval must be > 0");
+  }
+  return o;
+}
+
 /// Loads the scene and runs the verb. Errors after loading (command-line values, --body)
-/// gain the scene file's name, as the scene's own errors have it.
-Json run(const Args& a) {
+/// gain the scene file's name, as the scene's own errors have it; so does running out of
+/// memory, with what was being built.
+Result run(const Args& a) {
+  set_stage("reading the scene");
   const Scene s = load_scene(a.scene);
   try {
+    set_stage("setting up the state");
     VecX<double> beta_dot, tau;
     const State x = state_of(s, a, beta_dot, tau);
     const Scene::Frame* frame = a.body ? &find_frame(s, *a.body) : nullptr;
-    Json out;
+    set_stage(std::string("computing ") + verb_name(*a.verb) + " (" + std::to_string(s.model.n()) +
+              " bodies)");
+    Result r;
     switch (*a.verb) {
       case Verb::Kinematics:
-        out = kinematics(s, x, beta_dot, frame);
+        r.emit = kinematics(s, x, beta_dot, frame);
         break;
       case Verb::Jacobian:  // default: the tip, the last body of the file
-        out = jacobian(s, x, frame ? *frame : s.frames.back());
+        r.emit = jacobian(s, x, frame ? *frame : s.frames.back());
         break;
       case Verb::InverseDynamics:
-        out = inverse_dynamics(s, x, beta_dot);
+        r.emit = inverse_dynamics(s, x, beta_dot);
         break;
       case Verb::ForwardDynamics:
-        out = forward_dynamics(s, x, tau);
+        r.emit = forward_dynamics(s, x, tau, a.check);
         break;
       case Verb::MassMatrix:
-        out = mass_matrix(s, x, a.inverse);
+        r.emit = mass_matrix(s, x, a.inverse, a.check);
         break;
       case Verb::Simulate:
-        out = simulate(s, x, simulation_options(a), a.out ? *a.out : "");
+        r = simulate(s, x, simulation_options(a), output_options(a));
         break;
     }
-    if (!all_finite(out))  // never a silent NaN: huge values overflow
+    set_stage("checking the result");
+    if (!all_finite(r.emit))  // never a silent NaN: huge values overflow
       throw Error("result: not finite (an overflow: are q, qd, qdd, tau too large?)");
-    return out;
+    set_stage("writing the result");
+    FdSink out(STDOUT_FILENO, "stdout");
+    JsonWriter w(&out);
+    r.emit(w);
+    w.finish();
+    out.finish();
+    if (!r.note.empty()) r.note = a.scene + ": " + r.note;
+    return r;
+  } catch (const OutputError&) {
+    throw;
   } catch (const Error& e) {
     throw Error(a.scene + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw Error(a.scene + ": out of memory while " + stage());
   }
 }
 
@@ -125,13 +173,20 @@ int main(int argc, char** argv) {
     std::cerr << "soa: " << e.what() << " (see soa --help)\n";
     return 2;
   }
-  if (a.help) {
-    std::cout << help_text(a.verb);
-    return 0;
-  }
   try {
-    write_json(std::cout, run(a));
-    return 0;
+    if (a.help) {
+      FdSink out(STDOUT_FILENO, "stdout");
+      const std::string text = help_text(a.verb);
+      out.write(text.data(), text.size());
+      out.finish();
+      return 0;
+    }
+    const Result r = run(a);
+    if (!r.note.empty()) std::cerr << r.note << "\n";
+    return r.exit_code;
+  } catch (const std::bad_alloc&) {
+    std::cerr << a.scene << ": out of memory while " << stage() << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

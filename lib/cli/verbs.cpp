@@ -1,24 +1,41 @@
-// The six computations of `soa` (lessons 3-8 and the simulation), from a scene and a state to JSON. Vectors
-// over the chain are reordered from the model's order (tip first) to the file's (base first).
+// The six computations of `soa` (lessons 3-8 and the simulation), from a scene and a state
+// to JSON. Vectors over the chain are reordered from the model's order (tip first) to the
+// file's (base first).
 #include "verbs.hpp"
 
 #include <unistd.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <csignal>
 #include <cstdio>
-#include <fstream>
-#include <iomanip>
 #include <limits>
+#include <memory>
+#include <random>
 
+#include "output.hpp"
 #include "soa/chain.hpp"
 
 namespace soa::cli {
 namespace {
 
+std::string& stage_text() {
+  static std::string s = "reading the command line";
+  return s;
+}
+
+/// "%g" of a number, for messages.
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 /// The names of the coordinates of beta in file order: "link3", or "wrist[0]", "wrist[1]".
-Json column_names(const Scene& s) {
-  Json names = Json::array();
+std::vector<std::string> column_names(const Scene& s) {
+  std::vector<std::string> names;
   for (int k : s.file_order) {
     const Body& B = s.model.body(k);
     const int nv = B.hinge.nv();
@@ -28,33 +45,51 @@ Json column_names(const Scene& s) {
   return names;
 }
 
-/// A model-order matrix (tip first) in file order, rows and columns.
-MatX<double> in_file_order(const Scene& s, const MatX<double>& A) {
-  const std::vector<int> idx = file_v_index(s);
-  const int n = int(idx.size());
-  MatX<double> out(n, n);
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c) out(r, c) = A(idx[r], idx[c]);
-  return out;
-}
-
-/// A model-order configuration (tip first) in file order.
-VecX<double> in_file_order_q(const Scene& s, const VecX<double>& theta) {
-  const std::vector<int> idx = file_q_index(s);
-  VecX<double> out(idx.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) out[i] = theta[idx[i]];
-  return out;
-}
-
-/// A model-order vector (tip first) in file order.
-VecX<double> in_file_order(const Scene& s, const VecX<double>& v) {
-  const std::vector<int> idx = file_v_index(s);
+/// A model-order vector (tip first) picked in file order by \p idx.
+VecX<double> pick(const VecX<double>& v, const std::vector<int>& idx) {
   VecX<double> out(idx.size());
   for (std::size_t i = 0; i < idx.size(); ++i) out[i] = v[idx[i]];
   return out;
 }
 
+/// The rows of a model-order matrix in file order, rows and columns.
+void file_order_rows(JsonWriter& w, const MatX<double>& A, const std::vector<int>& idx) {
+  const int n = int(idx.size());
+  VecX<double> row(n);
+  w.begin_array();
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) row[c] = A(idx[r], idx[c]);
+    w.numbers(row);
+  }
+  w.end_array();
+}
+
+/// A model-order vector over the coordinates twice: per body (`per_body`: {name: [...]}) and
+/// whole in file order (`whole`), with the "columns" naming its entries.
+void per_body_and_file_order(JsonWriter& w, const Scene& scene, const char* per_body,
+                             const char* whole, const VecX<double>& v) {
+  w.key(per_body);
+  w.begin_object();
+  for (int k : scene.file_order) {
+    const Body& B = scene.model.body(k);
+    w.key(B.name);
+    w.numbers(v.segment(B.v_offset, B.hinge.nv()));
+  }
+  w.end_object();
+  w.key("columns");
+  w.strings(column_names(scene));
+  w.key(whole);
+  w.numbers(pick(v, file_v_index(scene)));
+}
+
 }  // namespace
+
+const std::string& stage() {
+  return stage_text();
+}
+void set_stage(std::string what) {
+  stage_text() = std::move(what);
+}
 
 const Scene::Frame& find_frame(const Scene& scene, const std::string& name) {
   for (const Scene::Frame& f : scene.frames)
@@ -64,146 +99,266 @@ const Scene::Frame& find_frame(const Scene& scene, const std::string& name) {
   throw Error("--body: no body named \"" + name + "\" (the bodies: " + names + ")");
 }
 
-Json kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
+Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
                 const Scene::Frame* only) {
   const Model& m = scene.model;
-  Workspace ws(m);
-  update_phi(m, x.theta, ws);
-  update_poses(m, ws);
-  update_velocities(m, x, ws);
-  update_accelerations(m, x, beta_dot.data(), Acceleration(), ws);
-  Json bodies = Json::object();
-  for (const Scene::Frame& f : scene.frames) {
-    if (only && only->name != f.name) continue;
-    // Frame F fixed on body k at ^{O_k}T_F: V(F) = phi*(O_k, F) V(k), and its acceleration
-    // adds the centripetal term of the offset (as jacobian_dot_times_beta() does).
-    const Phi phi(f.offset);
-    const Pose pose = ws.pose[f.k - 1] * f.offset;
-    const Velocity V = phi.transpose_apply(ws.V[f.k - 1]);
-    const Vec3<double> w = ws.V[f.k - 1].angular();
-    const Acceleration alpha =
-        phi.transpose_apply(ws.alpha[f.k - 1]) +
-        Acceleration(Vec3<double>::Zero(),
-                     f.offset.R().transpose() * w.cross(w.cross(f.offset.l())));
-    Json b = Json::object();
-    b["position"] = to_json(pose.l());
-    b["quaternion"] = to_json(UnitQuaternion::from_matrix(pose.R()).coeffs());
-    b["velocity"] = to_json(V.vector());
-    b["acceleration"] = to_json(alpha.vector());
-    bodies[f.name] = std::move(b);
-  }
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["bodies"] = std::move(bodies);
-  return out;
+  auto ws = std::make_shared<Workspace>(m);
+  update_phi(m, x.theta, *ws);
+  update_poses(m, *ws);
+  update_velocities(m, x, *ws);
+  update_accelerations(m, x, beta_dot.data(), Acceleration(), *ws);
+  return [&scene, ws, only](JsonWriter& w) {
+    w.begin_object();
+    w.member("scene", scene.title);
+    w.key("bodies");
+    w.begin_object();
+    for (const Scene::Frame& f : scene.frames) {
+      if (only && only->name != f.name) continue;
+      // Frame F fixed on body k at ^{O_k}T_F: V(F) = phi*(O_k, F) V(k), and its acceleration
+      // adds the centripetal term of the offset (as jacobian_dot_times_beta() does).
+      const Phi phi(f.offset);
+      const Pose pose = ws->pose[f.k - 1] * f.offset;
+      const Velocity V = phi.transpose_apply(ws->V[f.k - 1]);
+      const Vec3<double> om = ws->V[f.k - 1].angular();
+      const Acceleration alpha =
+          phi.transpose_apply(ws->alpha[f.k - 1]) +
+          Acceleration(Vec3<double>::Zero(),
+                       f.offset.R().transpose() * om.cross(om.cross(f.offset.l())));
+      w.key(f.name);
+      w.begin_object();
+      w.key("position");
+      w.numbers(pose.l());
+      w.key("quaternion");
+      w.numbers(UnitQuaternion::from_matrix(pose.R()).coeffs());
+      w.key("velocity");
+      w.numbers(V.vector());
+      w.key("acceleration");
+      w.numbers(alpha.vector());
+      w.end_object();
+    }
+    w.end_object();
+    w.end_object();
+  };
 }
 
-Json jacobian(const Scene& scene, const State& x, const Scene::Frame& frame) {
+Emit jacobian(const Scene& scene, const State& x, const Scene::Frame& frame) {
   const Model& m = scene.model;
   Workspace ws(m);
   update_phi(m, x.theta, ws);
   update_poses(m, ws);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> J;
-  soa::jacobian(m, x.theta, ws, frame.k, frame.offset, J);
-  const std::vector<int> idx = file_v_index(scene);
-  MatX<double> J_file(6, idx.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) J_file.col(i) = J.col(idx[i]);
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["body"] = frame.name;
-  out["rows"] = Json::array({"wx", "wy", "wz", "vx", "vy", "vz"});
-  out["columns"] = column_names(scene);
-  out["J"] = rows_to_json(J_file);
-  return out;
+  auto J = std::make_shared<Eigen::Matrix<double, 6, Eigen::Dynamic>>();
+  set_stage("building the Jacobian (6 x " + std::to_string(m.nv()) + ")");
+  soa::jacobian(m, x.theta, ws, frame.k, frame.offset, *J);
+  return [&scene, &frame, J](JsonWriter& w) {
+    const std::vector<int> idx = file_v_index(scene);
+    w.begin_object();
+    w.member("scene", scene.title);
+    w.member("body", frame.name);
+    w.key("rows");
+    w.strings({"wx", "wy", "wz", "vx", "vy", "vz"});
+    w.key("columns");
+    w.strings(column_names(scene));
+    w.key("J");
+    w.begin_array();
+    VecX<double> row(idx.size());
+    for (int r = 0; r < 6; ++r) {
+      for (std::size_t i = 0; i < idx.size(); ++i) row[i] = (*J)(r, idx[i]);
+      w.numbers(row);
+    }
+    w.end_array();
+    w.end_object();
+  };
 }
 
-Json inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& beta_dot) {
+Emit inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& beta_dot) {
   const Model& m = scene.model;
-  Workspace ws(m);
-  VecX<double> T(m.nv());
-  soa::inverse_dynamics(m, x, beta_dot, scene.f_ext, ws, T);
-  Json per_body = Json::object();
-  for (int k : scene.file_order) {
-    const Body& B = m.body(k);
-    per_body[B.name] = to_json(T.segment(B.v_offset, B.hinge.nv()));
+  auto T = std::make_shared<VecX<double>>(m.nv());
+  {
+    Workspace ws(m);
+    soa::inverse_dynamics(m, x, beta_dot, scene.f_ext, ws, *T);
   }
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["hinge_forces"] = std::move(per_body);
-  out["columns"] = column_names(scene);
-  out["T"] = to_json(in_file_order(scene, T));
-  return out;
+  return [&scene, T](JsonWriter& w) {
+    w.begin_object();
+    w.member("scene", scene.title);
+    per_body_and_file_order(w, scene, "hinge_forces", "T", *T);
+    w.end_object();
+  };
 }
 
-Json forward_dynamics(const Scene& scene, const State& x, const VecX<double>& tau) {
+Emit forward_dynamics(const Scene& scene, const State& x, const VecX<double>& tau, bool check) {
   const Model& m = scene.model;
-  Workspace ws(m);
-  ForwardDynamics fd(m);
-  VecX<double> beta_dot(m.nv());
-  soa::forward_dynamics(m, x, tau, scene.f_ext, ws, fd, beta_dot);
-  // The second way (lessons 4-5): M beta_dot = tau - C, M by the composite bodies, C by
-  // inverse dynamics at beta_dot = 0, Eigen's LDLT.
-  VecX<double> C(m.nv());
-  soa::inverse_dynamics(m, x, VecX<double>::Zero(m.nv()).eval(), scene.f_ext, ws, C);
-  std::vector<SpatialInertia> R(m.n());
-  MatX<double> M;
-  update_phi(m, x.theta, ws);
-  mass_matrix_crb(m, x, ws, R, M);
-  const VecX<double> ref = M.ldlt().solve(tau - C);
-  const double scale = std::max(ref.norm(), beta_dot.norm());
-  Json per_body = Json::object();
-  for (int k : scene.file_order) {
-    const Body& B = m.body(k);
-    per_body[B.name] = to_json(beta_dot.segment(B.v_offset, B.hinge.nv()));
+  const int nv = m.nv();
+  auto qdd = std::make_shared<VecX<double>>(nv);
+  struct Checks {
+    double round_trip = 0;
+    bool dense = false;
+    double dense_difference = 0, dense_cond = 0;
+  };
+  auto c = std::make_shared<Checks>();
+  {
+    Workspace ws(m);
+    {
+      ForwardDynamics fd = ForwardDynamics::lean(m);  // 56 bytes a body, not 1.8 kB
+      soa::forward_dynamics(m, x, tau, scene.f_ext, ws, fd, *qdd);
+    }
+    // The round trip through inverse dynamics (O(N)): T(q, qd, qdd) = tau within rounding,
+    // measured against the size of the terms, |tau| + |C(q, qd)|.
+    VecX<double> T(nv), C(nv);
+    soa::inverse_dynamics(m, x, *qdd, scene.f_ext, ws, T);
+    soa::inverse_dynamics(m, x, VecX<double>::Zero(nv).eval(), scene.f_ext, ws, C);
+    const double scale = tau.norm() + C.norm();
+    c->round_trip = scale > 0 ? (T - tau).norm() / scale : (T - tau).norm();
+    if (check || nv <= kDenseCheckMax) {
+      // The second way (lessons 4-5): M qdd = tau - C, M by the composite bodies, Eigen's
+      // LDLT. Its own error is about eps cond(M), often far above the O(N) result's.
+      set_stage("building the dense cross-check (the " + std::to_string(nv) + " x " +
+                std::to_string(nv) + " mass matrix)");
+      std::vector<SpatialInertia> R(m.n());
+      MatX<double> M;
+      update_phi(m, x.theta, ws);
+      mass_matrix_crb(m, x, ws, R, M);
+      const Eigen::LDLT<MatX<double>> ldlt(M);
+      const VecX<double> ref = ldlt.solve(tau - C);
+      const double s = std::max(ref.norm(), qdd->norm());
+      c->dense = true;
+      c->dense_difference = s > 0 ? (*qdd - ref).norm() / s : 0.0;
+      const double rcond = ldlt.rcond();
+      c->dense_cond = rcond > 0 ? 1 / rcond : std::numeric_limits<double>::infinity();
+    }
   }
-  Json check = Json::object();
-  check["method"] = "M qdd = tau - C, M by composite bodies, Eigen LDLT";
-  check["relative_difference"] = scale > 0 ? (beta_dot - ref).norm() / scale : 0.0;
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["method"] = "articulated body forward dynamics, O(N)";
-  out["accelerations"] = std::move(per_body);
-  out["columns"] = column_names(scene);
-  out["qdd"] = to_json(in_file_order(scene, beta_dot));
-  out["check"] = std::move(check);
-  return out;
+  return [&scene, qdd, c](JsonWriter& w) {
+    const Model& m = scene.model;
+    w.begin_object();
+    w.member("scene", scene.title);
+    w.member("method", "articulated body forward dynamics, O(N)");
+    per_body_and_file_order(w, scene, "accelerations", "qdd", *qdd);
+    w.key("check");
+    w.begin_object();
+    w.member("round_trip_residual", c->round_trip);
+    w.member("round_trip",
+             "|ID(q, qd, qdd) - tau| / (|tau| + |C(q, qd)|), ID the inverse dynamics of lesson 4: "
+             "how far qdd is from satisfying the equations of motion");
+    if (c->dense) {
+      w.member("dense_difference", c->dense_difference);
+      if (std::isfinite(c->dense_cond)) {
+        w.key("dense_cond_estimate");  // 1 / Eigen's rcond() of the LDLT
+        w.value(c->dense_cond);
+      }
+      w.member("dense",
+               "|qdd - qdd_dense| / |qdd|, qdd_dense solving M qdd = tau - C (M by composite "
+               "bodies, Eigen LDLT): a difference between two methods, of which the dense one "
+               "alone errs by up to about eps cond(M)");
+    } else {
+      w.key("dense_skipped");
+      w.value("n_v = " + std::to_string(m.nv()) + " is over " + std::to_string(kDenseCheckMax) +
+              "; --check runs the dense cross-check (O(n_v^3) time, O(n_v^2) memory)");
+    }
+    w.end_object();
+    w.end_object();
+  };
 }
 
-Json simulate(const Scene& scene, const State& x0, const SimulationOptions& opt,
-              const std::string& csv_path) {
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+void on_stop_signal(int s) {
+  g_signal = s;
+}
+
+/// SIGINT and SIGTERM set g_signal while a simulation runs; a second one ends the program
+/// at once (SA_RESETHAND).
+class StopSignals {
+ public:
+  StopSignals() {
+    g_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+
+ private:
+  struct sigaction old_int_ {
+  }, old_term_{};
+};
+
+/// A CSV field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break,
+/// quotes doubled.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+Result simulate(const Scene& scene, const State& x0, const SimulationOptions& opt_in,
+                const OutputOptions& out) {
   const Model& m = scene.model;
-  std::ofstream csv;
   const std::vector<int> qi = file_q_index(scene), vi = file_v_index(scene);
-  if (!csv_path.empty()) {
-    csv.open(csv_path);
-    if (!csv) throw Error("--out: cannot write " + csv_path);
-    csv << std::setprecision(std::numeric_limits<double>::max_digits10) << "t";
-    const Json names = column_names(scene);
+  ChainSystem sys(m, scene.f_ext);
+  std::unique_ptr<OutputFile> file;
+  std::string line;
+  long rows = 0;
+  if (!out.csv_path.empty()) {
+    file = std::make_unique<OutputFile>(out.csv_path, "--out " + out.csv_path, scene.name);
+    line = "t";
     for (int k : scene.file_order) {  // q names: "link1", or "ball[0]".."ball[3]"
       const Body& B = m.body(k);
       for (int i = 0; i < B.hinge.nq(); ++i)
-        csv << ",q:" << (B.hinge.nq() == 1 ? B.name : B.name + "[" + std::to_string(i) + "]");
+        line +=
+            "," +
+            csv_field("q:" + (B.hinge.nq() == 1 ? B.name : B.name + "[" + std::to_string(i) + "]"));
     }
-    for (const auto& n : names) csv << ",qd:" << n.get<std::string>();
-    csv << ",energy,quaternion_norm_error\n";
+    for (const std::string& n : column_names(scene)) line += "," + csv_field("qd:" + n);
+    line += ",energy,quaternion_norm_error\n";
+    file->sink().write(line.data(), line.size());
   }
+  double written_t = -1;  // the time of the last row written
+  auto write_row = [&](double t, const State& s) {
+    char text[32];
+    line.clear();
+    line.append(text, format_number(text, t));
+    for (int i : qi) line.append(1, ',').append(text, format_number(text, s.theta[i]));
+    for (int i : vi) line.append(1, ',').append(text, format_number(text, s.beta[i]));
+    double qerr = 0;
+    for (const Body& B : m.bodies())
+      if (B.hinge.type == HingeType::Spherical || B.hinge.type == HingeType::Free)
+        qerr = std::max(qerr, std::abs(s.theta.segment<4>(B.q_offset).norm() - 1.0));
+    line.append(1, ',').append(text, format_number(text, sys.energy(s)));
+    line.append(1, ',').append(text, format_number(text, qerr)).append(1, '\n');
+    file->sink().write(line.data(), line.size());
+    if (file->sink().failed()) file->sink().fail();  // a full disk stops the run at once
+    written_t = t;
+    ++rows;
+  };
   // A progress bar on stderr for runs longer than a second, when stderr is a terminal.
   const bool tty = isatty(STDERR_FILENO) == 1;
   const auto start = std::chrono::steady_clock::now();
   auto last = start;
   bool drew = false;
-  ChainSystem sys(m, scene.f_ext);
+  long step = -1;
+  double last_t = 0, next_out = 0;
   State x = x0;
-  const SimulationSummary sum = soa::simulate(sys, x, opt, [&](double t, const State& s) {
-    if (csv.is_open()) {
-      csv << t;
-      for (int i : qi) csv << ',' << s.theta[i];
-      for (int i : vi) csv << ',' << s.beta[i];
-      double qerr = 0;
-      for (const Body& B : m.bodies())
-        if (B.hinge.type == HingeType::Spherical || B.hinge.type == HingeType::Free)
-          qerr = std::max(qerr, std::abs(s.theta.segment<4>(B.q_offset).norm() - 1.0));
-      csv << ',' << sys.energy(s) << ',' << qerr << '\n';
+  SimulationOptions opt = opt_in;
+  StopSignals signals;
+  opt.stop = &g_signal;
+  auto observe = [&](double t, const State& s) {
+    ++step;
+    last_t = t;
+    if (file) {
+      bool due = out.out_dt > 0 ? t >= next_out - 1e-9 * out.out_dt : step % out.every == 0;
+      if (due) {
+        write_row(t, s);
+        if (out.out_dt > 0) next_out = (std::floor(t / out.out_dt + 1e-9) + 1) * out.out_dt;
+      }
     }
     if (tty) {
       const auto now = std::chrono::steady_clock::now();
@@ -215,60 +370,159 @@ Json simulate(const Scene& scene, const State& x0, const SimulationOptions& opt,
         drew = true;
       }
     }
-  });
+  };
+  SimulationSummary sum;
+  try {
+    sum = soa::simulate(sys, x, opt, observe);
+  } catch (const OutputError&) {
+    if (drew) std::fprintf(stderr, "\r%70s\r", "");
+    throw;
+  } catch (const Error& e) {
+    // A blow-up (or a singular D(k)) part way: the rows before it are kept, complete; x is
+    // the last accepted state.
+    if (drew) std::fprintf(stderr, "\r%70s\r", "");
+    if (!file || step < 0) throw;
+    if (written_t != last_t) write_row(last_t, x);
+    file->commit();
+    throw Error(std::string(e.what()) + "; the trajectory up to t = " + num(last_t) + " s (" +
+                std::to_string(rows) + " rows) is in " + out.csv_path);
+  }
   if (drew) std::fprintf(stderr, "\r%70s\r", "");
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["integrator"] = integrator_name(opt.method);
-  out["order"] = integrator_order(opt.method);
-  if (opt.method == Integrator::DormandPrince)
-    out["tol"] = opt.tol;
-  else
-    out["dt"] = opt.t_end / double(std::max(1L, sum.steps));
-  out["t_end"] = opt.t_end;
-  out["steps"] = sum.steps;
-  out["rejected_steps"] = sum.rejected;
-  out["evaluations"] = sum.evaluations;
-  out["wall_seconds"] = sum.wall_seconds;
-  out["energy_start"] = sum.energy0;
-  out["energy_end"] = sum.energy1;
-  out["max_energy_drift"] = sum.max_energy_drift;
-  out["columns"] = column_names(scene);
-  out["q"] = to_json(in_file_order_q(scene, x.theta));
-  out["qd"] = to_json(in_file_order(scene, x.beta));
-  if (!csv_path.empty()) out["trajectory"] = csv_path;
-  return out;
+  if (file) {
+    if (written_t != sum.t) write_row(sum.t, x);
+    file->commit();
+  }
+  Result r;
+  const int sig = sum.interrupted ? int(g_signal) : 0;
+  const char* sig_name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+  if (sum.interrupted) {
+    r.exit_code = 128 + sig;
+    r.note = std::string("simulate: interrupted by ") + sig_name + " at t = " + num(sum.t) +
+             " s, step " + std::to_string(sum.steps) + " of [0, " + num(opt.t_end) + "]" +
+             (file ? "; the trajectory up to there is in " + out.csv_path : std::string());
+  }
+  const double dt =
+      opt.method == Integrator::DormandPrince
+          ? 0.0
+          : opt.t_end / std::max(1.0, std::ceil(double(opt.t_end) / double(opt.dt) - 1e-9));
+  auto xf = std::make_shared<State>(std::move(x));
+  r.emit = [&scene, opt, sum, dt, xf, out, rows, sig_name](JsonWriter& w) {
+    w.begin_object();
+    w.member("scene", scene.title);
+    w.member("integrator", integrator_name(opt.method));
+    w.member("order", integrator_order(opt.method));
+    if (opt.method == Integrator::DormandPrince) {
+      w.member("tol", opt.tol);
+    } else {
+      w.member("dt", dt);
+    }
+    w.member("t_end", opt.t_end);
+    if (sum.interrupted) {
+      w.key("interrupted");
+      w.begin_object();
+      w.member("signal", sig_name);
+      w.member("t", sum.t);
+      w.end_object();
+    }
+    w.member("steps", sum.steps);
+    w.member("rejected_steps", sum.rejected);
+    w.member("evaluations", sum.evaluations);
+    w.member("wall_seconds", sum.wall_seconds);
+    w.member("energy_start", sum.energy0);
+    w.member("energy_end", sum.energy1);
+    w.member("max_energy_drift", sum.max_energy_drift);
+    w.key("columns");
+    w.strings(column_names(scene));
+    w.key("q");
+    w.numbers(pick(xf->theta, file_q_index(scene)));
+    w.key("qd");
+    w.numbers(pick(xf->beta, file_v_index(scene)));
+    if (!out.csv_path.empty()) {
+      w.member("trajectory", out.csv_path);
+      w.member("rows", rows);
+    }
+    w.end_object();
+  };
+  return r;
 }
 
-Json mass_matrix(const Scene& scene, const State& x, bool inverse) {
+Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check) {
+  const Model& m = scene.model;
+  const int n = m.nv();
+  if (n > kMassMatrixMax)
+    throw Error("mass-matrix: n_v = " + std::to_string(n) + " is over " +
+                std::to_string(kMassMatrixMax) + ": the n_v x n_v matrix would take " +
+                num(8.0 * n * n) +
+                " bytes and its text about 20 times that; forward-dynamics and "
+                "inverse-dynamics need no mass matrix");
   // O(N^2) from the composite rigid body inertias (lesson 5).
-  Workspace ws(scene.model);
-  update_phi(scene.model, x.theta, ws);
-  std::vector<SpatialInertia> R(scene.model.n());
-  MatX<double> M;
-  mass_matrix_crb(scene.model, x, ws, R, M);
-  const MatX<double> M_file = in_file_order(scene, M);
-  const int n = int(M_file.rows());
-  const double scale = n > 0 ? M_file.cwiseAbs().maxCoeff() : 0.0;
-  const bool symmetric =
-      n == 0 || (M_file - M_file.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale;
-  const Eigen::LLT<MatX<double>> llt(0.5 * (M_file + M_file.transpose()));
-  Json out = Json::object();
-  out["scene"] = scene.title;
-  out["columns"] = column_names(scene);
-  out["M"] = rows_to_json(M_file);
-  out["symmetric"] = symmetric;
-  out["positive_definite"] = llt.info() == Eigen::Success;
-  if (inverse) {  // O(N^2) without M (lesson 7), checked by |M Minv - I|
-    MassMatrixInverse w(scene.model);
-    MatX<double> Minv;
-    mass_matrix_inverse(scene.model, x, ws, w, Minv);
-    const MatX<double> Minv_file = in_file_order(scene, Minv);
-    out["Minv"] = rows_to_json(Minv_file);
-    out["identity_residual"] =
-        n > 0 ? (M_file * Minv_file - MatX<double>::Identity(n, n)).cwiseAbs().maxCoeff() : 0.0;
+  set_stage("building the " + std::to_string(n) + " x " + std::to_string(n) + " mass matrix");
+  Workspace ws(m);
+  update_phi(m, x.theta, ws);
+  std::vector<SpatialInertia> R(m.n());
+  auto M = std::make_shared<MatX<double>>();
+  mass_matrix_crb(m, x, ws, R, *M);
+  struct Checks {
+    double scale = 0;
+    bool symmetric = true, dense = false, positive_definite = false;
+    double identity_residual = 0, probe_residual = 0;
+  };
+  auto c = std::make_shared<Checks>();
+  c->scale = n > 0 ? M->cwiseAbs().maxCoeff() : 0.0;
+  for (int i = 0; i < n && c->symmetric; ++i)
+    for (int j = i + 1; j < n; ++j)
+      if (std::abs((*M)(i, j) - (*M)(j, i)) > 1e-12 * c->scale) c->symmetric = false;
+  c->dense = check || n <= kDenseCheckMax;
+  if (c->dense) {
+    const Eigen::LLT<MatX<double>> llt(0.5 * (*M + M->transpose()));
+    c->positive_definite = llt.info() == Eigen::Success;
   }
-  return out;
+  auto Minv = std::make_shared<MatX<double>>();
+  if (inverse) {  // O(N^2) without M (lesson 7), checked on random vectors and by M Minv - I
+    set_stage("building the " + std::to_string(n) + " x " + std::to_string(n) +
+              " inverse mass matrix");
+    MassMatrixInverse wi(m);
+    mass_matrix_inverse(m, x, ws, wi, *Minv);
+    std::mt19937 g(11);
+    std::normal_distribution<double> N;
+    for (int probe = 0; probe < 3 && n > 0; ++probe) {
+      VecX<double> v(n);
+      for (int i = 0; i < n; ++i) v[i] = N(g);
+      c->probe_residual = std::max(c->probe_residual, (*M * (*Minv * v) - v).norm() / v.norm());
+    }
+    if (c->dense && n > 0)
+      c->identity_residual = (*M * *Minv - MatX<double>::Identity(n, n)).cwiseAbs().maxCoeff();
+  }
+  return [&scene, M, Minv, c, inverse](JsonWriter& w) {
+    const std::vector<int> idx = file_v_index(scene);
+    const int n = int(idx.size());
+    w.begin_object();
+    w.member("scene", scene.title);
+    w.key("columns");
+    w.strings(column_names(scene));
+    w.key("M");
+    file_order_rows(w, *M, idx);
+    w.member("symmetric", c->symmetric);
+    if (c->dense) {
+      w.member("positive_definite", c->positive_definite);
+    }
+    if (inverse) {
+      w.key("Minv");
+      file_order_rows(w, *Minv, idx);
+      w.member("probe_residual", c->probe_residual);
+      if (c->dense) {
+        w.member("identity_residual", c->identity_residual);
+      }
+    }
+    if (!c->dense) {
+      w.key("skipped");
+      w.value("n_v = " + std::to_string(n) + " is over " + std::to_string(kDenseCheckMax) +
+              ": positive_definite (a Cholesky factorization)" +
+              (inverse ? std::string(" and identity_residual (M Minv - I)") : std::string()) +
+              " cost O(n_v^3) and were not computed; --check computes them");
+    }
+    w.end_object();
+  };
 }
 
 }  // namespace soa::cli

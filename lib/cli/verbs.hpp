@@ -1,4 +1,6 @@
-// The six computations of `soa`, each from a scene and a state to a JSON result.
+// The six computations of `soa`, each from a scene and a state to a result that writes
+// itself as JSON (json_out.hpp). Everything is computed before the result is returned; the
+// result only formats it, in O(n) time and O(1) memory.
 #pragma once
 
 #include <string>
@@ -9,31 +11,62 @@
 
 namespace soa::cli {
 
+/// The dense cross-checks (forward-dynamics, mass-matrix) run up to this many coordinates,
+/// beyond it only with --check: they cost O(n_v^3), the answers O(n_v) and O(n_v^2).
+inline constexpr int kDenseCheckMax = 2000;
+/// mass-matrix refuses chains with more coordinates: the n_v x n_v matrix (3.2 GB at the
+/// limit) and its text (about 9 GB) are no longer a result anyone reads.
+inline constexpr int kMassMatrixMax = 20000;
+
+/// What the verb wants printed, and how the program ends.
+struct Result {
+  Emit emit;          ///< the JSON on stdout
+  int exit_code = 0;  ///< 0, or 128 + the signal that interrupted a simulation
+  std::string note;   ///< a line for stderr (an interrupted simulation), empty when none
+};
+
 /// The frame of the body called \p name in \p scene; throws soa::Error("--body: ...").
 const Scene::Frame& find_frame(const Scene& scene, const std::string& name);
 
 /// Poses, velocities and accelerations (gravity not included) of every body in file order,
 /// or of \p only when it is not null.
-Json kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
+Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
                 const Scene::Frame* only);
 
 /// The Jacobian of \p frame: 6 rows, one column per coordinate of beta in file order.
-Json jacobian(const Scene& scene, const State& x, const Scene::Frame& frame);
+Emit jacobian(const Scene& scene, const State& x, const Scene::Frame& frame);
 
 /// The hinge forces T per body and as one vector in file order.
-Json inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& beta_dot);
+Emit inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& beta_dot);
 
 /// The accelerations at the state \p x under the hinge forces \p tau (articulated body
-/// algorithm), per body and in file order, with the difference from CRB + LDLT.
-Json forward_dynamics(const Scene& scene, const State& x, const VecX<double>& tau);
+/// algorithm), per body and in file order, with the round-trip residual through inverse
+/// dynamics (O(N)) and, up to kDenseCheckMax coordinates or with \p check, the difference
+/// from CRB + LDLT.
+Emit forward_dynamics(const Scene& scene, const State& x, const VecX<double>& tau, bool check);
 
-/// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into \p csv_path
-/// (none when empty), the summary as JSON.
-Json simulate(const Scene& scene, const State& x, const SimulationOptions& opt,
-              const std::string& csv_path);
+/// The options of simulate beyond the integrator's.
+struct OutputOptions {
+  std::string csv_path;  ///< the trajectory (none when empty)
+  long every = 1;        ///< write every this many steps (and the last)
+  double out_dt = 0;     ///< or: the first step at or after each multiple of this (> 0)
+};
 
-/// The mass matrix in file order, with its symmetry and definiteness; with \p inverse, also
-/// its inverse by the O(N^2) algorithm of lesson 7.
-Json mass_matrix(const Scene& scene, const State& x, bool inverse);
+/// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into
+/// out.csv_path, the summary as JSON. SIGINT and SIGTERM stop the run at a step boundary:
+/// the rows so far are kept, the summary says so, exit code 130 or 143. A run that blows up
+/// keeps the rows before the blow-up and its message says where they are.
+Result simulate(const Scene& scene, const State& x, const SimulationOptions& opt,
+                const OutputOptions& out);
+
+/// The mass matrix in file order, with its symmetry and (up to kDenseCheckMax coordinates
+/// or with \p check) definiteness; with \p inverse, also its inverse by the O(N^2) algorithm
+/// of lesson 7, with its residual.
+Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check);
+
+/// What the program is building, for an out-of-memory message ("the mass matrix (n_v =
+/// 100000)").
+const std::string& stage();
+void set_stage(std::string what);
 
 }  // namespace soa::cli

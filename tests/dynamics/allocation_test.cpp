@@ -48,6 +48,9 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
     soa::ForwardDynamics fd(m);
     EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, fd, out); }), 0)
         << "forward_dynamics, case " << i;
+    soa::ForwardDynamics lean = soa::ForwardDynamics::lean(m);
+    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, lean, out); }), 0)
+        << "forward_dynamics (lean storage), case " << i;
     soa::MassMatrixInverse w(m);
     soa::MatX<double> M(m.nv(), m.nv());
     EXPECT_EQ(allocations([&] { soa::mass_matrix_inverse(m, x, ws, w, M); }), 0)

@@ -8,7 +8,9 @@
 // - float and long double: the float result's error against long double within eps_float
 //   cond(M);
 // - an empty external-force list gives bitwise the result of explicit zero forces;
-// - a singular D(k) and non-finite inputs stop with soa::Error naming the body.
+// - a singular D(k) and non-finite inputs stop with soa::Error naming the body;
+// - the lean storage (ForwardDynamics::lean(), for million-body chains) gives bitwise the
+//   result, the accelerations alpha(k) and the errors of the full storage.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,9 +30,9 @@ using VecX = soa::VecX<double>;
 constexpr double kEps = soa::eps<double>();
 
 VecX forward(const DynamicsCase<double>& c, soa::ForwardDynamics* out = nullptr,
-             soa::Workspace* ws_out = nullptr) {
+             soa::Workspace* ws_out = nullptr, bool lean = false) {
   soa::Workspace ws(c.m);
-  soa::ForwardDynamics fd(c.m);
+  soa::ForwardDynamics fd = lean ? soa::ForwardDynamics::lean(c.m) : soa::ForwardDynamics(c.m);
   VecX beta_dot(c.m.nv());
   soa::forward_dynamics(c.m, c.x, c.T, c.f_ext, ws, fd, beta_dot);
   if (out) *out = fd;
@@ -157,9 +159,9 @@ TEST(dynamics_Forward, NoExternalForcesEqualsExplicitZeros) {
   }
 }
 
-std::string message_of(const DynamicsCase<double>& c) {
+std::string message_of(const DynamicsCase<double>& c, bool lean = false) {
   try {
-    forward(c);
+    forward(c, nullptr, nullptr, lean);
   } catch (const soa::Error& e) {
     return e.what();
   }
@@ -174,6 +176,29 @@ TEST(dynamics_Forward, SingularDNamesTheBody) {
   c.m.body(1).name = "ghost";
   const std::string msg = message_of(c);
   EXPECT_EQ(msg.rfind("body 'ghost': articulated inertia D(1) singular: ", 0), 0u) << msg;
+  EXPECT_EQ(message_of(c, true), msg);
+}
+
+// The lean storage keeps G and nu packed and P rolling: the same arithmetic, so bitwise the
+// same beta_dot and alpha(k) (every hinge type, gravity, springs, external forces, rest).
+TEST(dynamics_Forward, LeanStorageGivesBitwiseTheSameResult) {
+  Random<double> rnd(31);
+  for (int i = 0; i < kCases; ++i) {
+    const DynamicsCase<double> c(rnd, i);
+    soa::Workspace ws_full(c.m), ws_lean(c.m);
+    const VecX full = forward(c, nullptr, &ws_full);
+    const VecX lean = forward(c, nullptr, &ws_lean, true);
+    ASSERT_TRUE((full.array() == lean.array()).all()) << "case " << i;
+    for (int k = 1; k <= c.m.n(); ++k)
+      ASSERT_TRUE(ws_full.alpha[k - 1].vector() == ws_lean.alpha[k - 1].vector())
+          << "case " << i << ", alpha(" << k << ")";
+  }
+  // Its size: two bodies of Riccati storage and 7 numbers per revolute coordinate.
+  const DynamicsCase<double> c(rnd, 0);
+  const soa::ForwardDynamics lean = soa::ForwardDynamics::lean(c.m);
+  EXPECT_EQ(lean.art.P.size(), 2u);
+  EXPECT_TRUE(lean.z.empty() && lean.nu.empty() && lean.art.R.empty());
+  EXPECT_EQ(lean.G_packed.size(), 6u * std::size_t(c.m.nv()));
 }
 
 TEST(dynamics_Forward, NonFiniteInputsNameTheBody) {
@@ -195,6 +220,7 @@ TEST(dynamics_Forward, NonFiniteInputsNameTheBody) {
     const std::string msg = message_of(c);
     EXPECT_NE(msg.find("'victim'"), std::string::npos) << what << ": " << msg;
     EXPECT_NE(msg.find("not finite"), std::string::npos) << what << ": " << msg;
+    EXPECT_EQ(message_of(c, true), msg) << what;
   }
 }
 

@@ -4,10 +4,11 @@
 /// random chains written as scene files by the test's own writer (scene_support.hpp).
 ///
 /// Suites: scene_defaults (the three default scenes), scene_format (the meaning of the
-/// format). Tolerances are in units of the machine epsilon: a scene file carries the centre
+/// format), scene_scale (large, deep and extreme inputs, generated). Tolerances are in units of the machine epsilon: a scene file carries the centre
 /// of mass and the inertia about it, and the placement as a quaternion, so the model read
 /// back differs from the one written by a few roundings of each conversion.
 #include <Eigen/Cholesky>
+#include <cstdio>
 #include <set>
 
 #include "scene_support.hpp"
@@ -334,6 +335,108 @@ TEST(scene_format, LockedBodyRidesOnItsParent) {
   }
   EXPECT_LE(worst_T.value(), 1024 * eps<double>());
   EXPECT_LE(worst_pose.value(), 256 * eps<double>());
+}
+
+/// A scene of one body on \p hinge (a JSON object) with inertia \p inertia.
+std::string one_body(const std::string& hinge,
+                     const std::string& inertia = R"({"Ixx": 1, "Iyy": 1, "Izz": 1})") {
+  return R"({"bodies": [{"name": "a", "parent": "base", "mass": 1, "com": [0, 0, 0], "inertia": )" +
+         inertia + R"(, "hinge": )" + hinge + "}]}";
+}
+
+// A huge axis is a direction: normalized without overflow in its norm (which made it zero).
+TEST(scene_scale, HugeAxesAreDirections) {
+  Scene s = parse_scene(one_body(R"({"type": "revolute", "axis": [2e154, 0, 0]})"), "h.json");
+  EXPECT_EQ(s.model.body(1).hinge.axis, Vec3<double>(1, 0, 0));
+  s = parse_scene(
+      one_body(R"({"type": "universal", "axis": [0, 0, 1.7e308], "axis2": [0, -1e300, 0]})"),
+      "h.json");
+  EXPECT_EQ(s.model.body(1).hinge.axis, Vec3<double>(0, 0, 1));
+  EXPECT_EQ(s.model.body(1).hinge.axis2, Vec3<double>(0, -1, 0));
+  s = parse_scene(one_body(R"({"type": "prismatic", "axis": [1.7e308, 1.7e308, 1.7e308]})"),
+                  "h.json");
+  EXPECT_LE((s.model.body(1).hinge.axis - Vec3<double>::Constant(1 / std::sqrt(3.0))).norm(),
+            4 * eps<double>());
+  // Ordinary axes are normalized as before, to the last bit.
+  const Vec3<double> a(0.3, -0.4, 1.2);
+  s = parse_scene(one_body(R"({"type": "revolute", "axis": [0.3, -0.4, 1.2]})"), "h.json");
+  EXPECT_EQ(s.model.body(1).hinge.axis, a.normalized());
+}
+
+// An inertia with entries near 1e308 is read (0.5 J + 0.5 J*, and its principal moments, do
+// not overflow; J + J* did, and the moments read as -nan).
+TEST(scene_scale, HugeInertiaIsRead) {
+  const Scene s = parse_scene(one_body(R"({"type": "revolute", "axis": [0, 0, 1]})",
+                                       R"({"Ixx": 1e308, "Iyy": 1e308, "Izz": 1e308})"),
+                              "big.json");
+  EXPECT_EQ(s.model.body(1).M.J(), Mat3<double>(Vec3<double>::Constant(1e308).asDiagonal()));
+}
+
+// 10^5 bodies read in O(n), about a second (the DOM parser with a callback took 4-9 s,
+// re-scanning the bodies array after every body; the time is checked in optimized builds),
+// and a field given twice in the last one is still found.
+TEST(scene_scale, LargeSceneIsReadWhole) {
+  const std::size_t n = 100000;
+  const Scene s = parse_scene(revolute_chain_text(n), "large.json");
+  ASSERT_EQ(s.model.n(), int(n));
+  EXPECT_EQ(s.frames.size(), n);
+  EXPECT_EQ(s.frames.back().name, "b99999");
+  EXPECT_EQ(s.model.body(1).name, "b99999");
+  EXPECT_TRUE(s.state.theta.isConstant(0.1));
+  EXPECT_EQ(error_of([&] { parse_scene(revolute_chain_text(n, R"(, "mass": 2)"), "dup.json"); }),
+            "dup.json: bodies[99999]: field \"mass\" given twice");
+  // Its time is measured by make bench (tests/bench/scale/cli_scale.cpp), not here.
+}
+
+// Nesting 10^6 levels deep is refused at once, at kMaxSceneDepth, with a shortened path;
+// 97 levels below the body (100 in all) are still read.
+TEST(scene_scale, DeepNestingIsRefused) {
+  const std::string deep(1000000, '['), end(1000000, ']');
+  const std::string body = R"({"bodies": [{"name": "a", "parent": "base", "mass": 1, "com": )";
+  EXPECT_EQ(error_of([&] { parse_scene(body + deep + end + "}]}", "deep.json"); }),
+            "deep.json: bodies[0].com[0] ... (92 levels) ... [0][0][0][0]: nested more than 100 "
+            "levels deep");
+  EXPECT_EQ(error_of([&] {
+              parse_scene(body + deep.substr(0, 97) + end.substr(0, 97) + "}]}", "deep.json");
+            }),
+            "deep.json: bodies[0].com: expected 3 numbers, got 1");
+  EXPECT_EQ(error_of([&] { parse_scene(R"({"bodies": )" + deep + end + "}", "deep.json"); }),
+            "deep.json: bodies[0]: expected an object, got an array");
+  EXPECT_EQ(error_of([&] { parse_scene(deep + end, "deep.json"); }),
+            "deep.json: top level: expected an object, got an array");
+  std::string objects;
+  for (int i = 0; i < 1000000; ++i) objects += R"({"x": )";
+  EXPECT_EQ(error_of([&] { parse_scene(R"({"gravity": )" + objects, "deep.json"); }),
+            "deep.json: gravity.x.x.x ... (92 levels) ... x.x.x.x: nested more than 100 levels "
+            "deep");
+}
+
+// Errors found while parsing, deep down: the path shows its first and last levels.
+TEST(scene_scale, DeepPathsAreShortened) {
+  std::string open, close;
+  for (int i = 0; i < 60; ++i) open += "[0, ", close += "]";
+  EXPECT_EQ(
+      error_of([&] { parse_scene(R"({"gravity": )" + open + "1e999" + close + "}", "p.json"); }),
+      "p.json: gravity[1][1][1] ... (53 levels) ... [1][1][1][1]: not a finite number "
+      "(1e999 is out of the range of a double)");
+  EXPECT_EQ(error_of([&] {
+              parse_scene(R"({"gravity": )" + open + R"({"a": 1, "a": 2})" + close + "}", "p.json");
+            }),
+            "p.json: gravity[1][1][1] ... (53 levels) ... [1][1][1][1]: field \"a\" given twice");
+}
+
+// A loop through many bodies is named by its ends.
+TEST(scene_scale, LongLoopIsShortened) {
+  json doc = chain_json({});
+  for (int i = 0; i < 1000; ++i) {
+    Body b;
+    b.name = "b" + std::to_string(i);
+    b.M = SpatialInertia::from_cm(1, Vec3<double>::Zero(), Mat3<double>::Identity());
+    doc["bodies"].push_back(body_json(b, "b" + std::to_string(i == 0 ? 999 : i - 1)));
+  }
+  EXPECT_EQ(error_of([&] { parse_scene(doc.dump(), "loop.json"); }),
+            "loop.json: bodies[0].parent: loop (b0 -> b999 -> b998 -> b997 -> ... (994 bodies) "
+            "... -> b2 -> b1 -> b0, following parents) never reaches \"base\"");
 }
 
 }  // namespace

@@ -13,8 +13,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "property.hpp"
@@ -230,6 +232,65 @@ TEST(simulation_BlowUp, ExplicitMethodsStopWithADiagnostic) {
   }
   EXPECT_EQ(blow_up_message(Integrator::ImplicitMidpoint, 1e-3), "(no error)");
   EXPECT_EQ(blow_up_message(Integrator::RK4, 1e-4), "(no error)");  // h omega ~ 0.6
+}
+
+// Issue 11: a step count that does not fit is refused with the numbers (it overflowed a
+// long and ran one step of 1 s); dopri5 with its error control switched off (tol 1e300)
+// blows up at a time inside [0, t_end], not a negative one.
+TEST(simulation_Limits, StepCountsThatDoNotFitAreRefused) {
+  const Scene s = chain(117, 3, false, true);
+  for (const auto& [dt, t_end] : {std::pair{1e-300, 1.0}, std::pair{1.0, 1e30}}) {
+    std::string msg = "(no error)";
+    try {
+      run(s, Integrator::RK4, dt, 0, t_end);
+    } catch (const soa::Error& e) {
+      msg = e.what();
+    }
+    EXPECT_EQ(msg.rfind("simulate: t_end / dt = ", 0), 0u) << msg;
+    EXPECT_NE(msg.find("steps, more than a run can count"), std::string::npos) << msg;
+  }
+}
+
+TEST(simulation_BlowUp, Dopri5WithoutErrorControlReportsATimeInTheRun) {
+  const Scene s = chain(119, 3, false, true);
+  std::string msg = "(no error)";
+  try {
+    run(s, Integrator::DormandPrince, 0, 1e300, 1e6);
+  } catch (const soa::Error& e) {
+    msg = e.what();
+  }
+  const std::size_t at = msg.find("blow-up at t = ");
+  ASSERT_NE(at, std::string::npos) << msg;
+  double t = -1;
+  ASSERT_EQ(std::sscanf(msg.c_str() + at, "blow-up at t = %lf", &t), 1) << msg;
+  EXPECT_GE(t, 0) << msg;
+  EXPECT_LE(t, 1e6) << msg;
+}
+
+// The stop flag (set by a signal handler in soa simulate) ends the run at a step boundary.
+TEST(simulation_Stop, AStopFlagEndsTheRunAtAStepBoundary) {
+  const Scene s = chain(121, 3, false, true);
+  soa::ChainSystem sys(s.m, {});
+  soa::SimulationOptions opt;
+  opt.method = Integrator::RK4;
+  opt.dt = 0.01;
+  opt.t_end = 1;
+  volatile std::sig_atomic_t stop = 0;
+  opt.stop = &stop;
+  State x = s.x0;
+  int observed = 0;
+  const soa::SimulationSummary sum = soa::simulate(sys, x, opt, [&](double, const State&) {
+    if (++observed == 11) stop = 1;  // t = 0 and 10 steps
+  });
+  EXPECT_TRUE(sum.interrupted);
+  EXPECT_EQ(sum.steps, 10);
+  EXPECT_NEAR(sum.t, 0.1, 1e-12);
+  stop = 0;
+  x = s.x0;
+  const soa::SimulationSummary full = soa::simulate(sys, x, opt, [](double, const State&) {});
+  EXPECT_FALSE(full.interrupted);
+  EXPECT_EQ(full.steps, 100);
+  EXPECT_NEAR(full.t, 1.0, 1e-12);
 }
 
 TEST(simulation_LeftOut, NoExternalForcesEqualsExplicitZeros) {

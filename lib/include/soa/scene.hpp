@@ -5,8 +5,12 @@
 /// notes (docs/scenes.md). Reading is strict: any problem is one soa::Error whose message
 /// names the file and the JSON path, e.g. `arm.json: bodies[3].inertia: not positive
 /// definite`.
+///
+/// Reading takes time and memory in proportion to the file (10^5 bodies in about a second); a
+/// file larger than kMaxSceneBytes or nested deeper than kMaxSceneDepth is refused.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -45,10 +49,22 @@ struct Scene {
   std::vector<Frame> frames;
 };
 
-/// Reads and checks a scene file. Throws soa::Error("<file>: <json path>: <problem>").
-Scene load_scene(const std::string& path);
+/// The largest scene file read, 1 GiB: a larger one is refused ("<file>: larger than the 1 GiB
+/// limit of a scene file") after reading at most this much (so an endless input such as
+/// /dev/zero stops too).
+constexpr std::uint64_t kMaxSceneBytes = std::uint64_t(1) << 30;
+/// The deepest nesting of JSON arrays and objects in a scene file (a scene needs 6 levels:
+/// top level, "bodies", a body, its "hinge", "placement", "rotation").
+constexpr int kMaxSceneDepth = 100;
 
-/// The same from JSON text; \p name stands for the file in messages.
+/// Reads and checks a scene file. Throws soa::Error("<file>: <json path>: <problem>"), or
+/// "<file>: <problem>" for the file itself (cannot open it, a directory, a read error, larger
+/// than kMaxSceneBytes, out of memory while reading it).
+Scene load_scene(const std::string& path);
+/// The same with another size limit: a file larger than \p max_bytes bytes is refused.
+Scene load_scene(const std::string& path, std::uint64_t max_bytes);
+
+/// The same from JSON text (at most kMaxSceneBytes); \p name stands for the file in messages.
 Scene parse_scene(const std::string& json_text, const std::string& name);
 
 /// File order of the coordinates: entry i is where the i-th value of `--q` (bodies in file
@@ -60,7 +76,8 @@ std::vector<int> file_v_index(const Scene& scene);
 
 /// \f$\theta\f$ from values in file order. Throws soa::Error("<problem>") for a wrong count,
 /// a value that is not finite, or a quaternion (spherical, free hinges) whose norm is not 1
-/// within 1e-6; quaternions are then normalized.
+/// within 1e-6 (the norm computed without overflow: "norm 1.73205e+200"); quaternions are then
+/// normalized.
 VecX<double> theta_from_file_order(const Scene& scene, const std::vector<double>& q);
 /// \f$\beta\f$ (or \f$\dot\beta\f$) from values in file order; the same checks.
 VecX<double> beta_from_file_order(const Scene& scene, const std::vector<double>& v);

@@ -93,8 +93,13 @@ template <class S>
 /// Per-body results of the Riccati recursion; sized once for a model.
 template <class S>
 struct ArticulatedT {
-  explicit ArticulatedT(const ModelT<S>& m)
-      : P(m.n()), P_plus(m.n()), D(m.n()), D_inv(m.n()), G(m.n()), R(m.n()) {}
+  explicit ArticulatedT(const ModelT<S>& m) : ArticulatedT(m.n(), m.n(), false) {}
+  /// Rolling storage: \f$P, P^+, D, D^{-1}, G\f$ of the last two bodies of the recursion
+  /// only (riccati_step() needs body k-1's to make body k's), no \f$R\f$: what the O(N)
+  /// forward dynamics of a long chain keeps (ForwardDynamicsT's lean storage).
+  static ArticulatedT rolling() { return ArticulatedT(2, 0, true); }
+  /// Where body k's entries are: k - 1, or (k - 1) mod 2 in rolling storage.
+  int slot(int k) const { return rolling_ ? (k - 1) & 1 : k - 1; }
   std::vector<Mat6<S>> P;             ///< \f$P(k)\f$
   std::vector<Mat6<S>> P_plus;        ///< \f$P^+(k) = \bar\tau(k) P(k)\f$
   std::vector<HingeMatrix<S>> D;      ///< \f$D(k) = H(k) P(k) H^*(k)\f$
@@ -108,6 +113,11 @@ struct ArticulatedT {
     const BodyT<S>& B = m.body(k);
     return Mat6<S>::Identity() - G[k - 1] * B.hinge.H_star(theta.data() + B.q_offset).transpose();
   }
+
+ private:
+  ArticulatedT(int n, int n_R, bool rolling)
+      : P(n), P_plus(n), D(n), D_inv(n), G(n), R(n_R), rolling_(rolling) {}
+  bool rolling_;
 };
 using Articulated = ArticulatedT<double>;
 
@@ -167,7 +177,7 @@ template <class S>
 S singular_D_ratio(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
                    const ArticulatedT<S>& art, int k, S d_min) {
   const BodyT<S>& B = m.body(k);
-  Mat6<S> Q = k > 1 ? transform_symmetric(ws.phi[k - 2], art.P[k - 2]) : Mat6<S>::Zero();
+  Mat6<S> Q = k > 1 ? transform_symmetric(ws.phi[k - 2], art.P[art.slot(k - 1)]) : Mat6<S>::Zero();
   add_inertia(B.M, Q);
   const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
   const HingeMatrix<S> DQ = Hs.transpose() * Q * Hs;
@@ -182,7 +192,7 @@ template <class S>
 S singular_D_ratio(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
                    const ArticulatedT<S>& art, int k) {
   const S d_min =
-      Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[k - 1], Eigen::EigenvaluesOnly)
+      Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[art.slot(k)], Eigen::EigenvaluesOnly)
           .eigenvalues()
           .minCoeff();
   return singular_D_ratio(m, x, ws, art, k, d_min);
@@ -200,9 +210,10 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
                ArticulatedT<S>& art, CompositeTraceT<S>& guard) {
   const BodyT<S>& B = m.body(k);
   const S* th = x.theta.data() + B.q_offset;
-  Mat6<S>& P = art.P[k - 1];
+  const int i = art.slot(k);
+  Mat6<S>& P = art.P[i];
   if (k > 1)
-    transform_symmetric(ws.phi[k - 2], art.P_plus[k - 2], P);
+    transform_symmetric(ws.phi[k - 2], art.P_plus[art.slot(k - 1)], P);
   else
     P.setZero();
   add_inertia(B.M, P);
@@ -216,21 +227,21 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
                            : Vec6<S>(P * s);
     const S d = s.dot(Ps);
     d_min = d;
-    art.D[k - 1].setConstant(1, 1, d);
+    art.D[i].setConstant(1, 1, d);
     const S d_inv = S(1) / d;
-    art.D_inv[k - 1].setConstant(1, 1, d_inv);
-    art.G[k - 1] = Ps * d_inv;
-    art.P_plus[k - 1] = P - art.G[k - 1] * Ps.transpose();
+    art.D_inv[i].setConstant(1, 1, d_inv);
+    art.G[i] = Ps * d_inv;
+    art.P_plus[i] = P - art.G[i] * Ps.transpose();
   } else {
     const JointMap<S> Hs = B.hinge.H_star(th);
     const JointMap<S> PHs = P * Hs;
-    art.D[k - 1] = Hs.transpose() * PHs;
-    d_min = Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[k - 1], Eigen::EigenvaluesOnly)
+    art.D[i] = Hs.transpose() * PHs;
+    d_min = Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[i], Eigen::EigenvaluesOnly)
                 .eigenvalues()
                 .minCoeff();
-    art.D_inv[k - 1] = art.D[k - 1].inverse();
-    art.G[k - 1] = PHs * art.D_inv[k - 1];
-    art.P_plus[k - 1] = P - art.G[k - 1] * PHs.transpose();
+    art.D_inv[i] = art.D[i].inverse();
+    art.G[i] = PHs * art.D_inv[i];
+    art.P_plus[i] = P - art.G[i] * PHs.transpose();
   }
   // |H*(k)|_F^2 times tr R(k) bounds lambda_max(H Q H*) from above (Q <= R).
   const S h2 = B.hinge.type == HingeType::Helical ? S(1) + B.hinge.pitch * B.hinge.pitch : S(nv);

@@ -2,6 +2,7 @@
 /// The serial-chain model: what does not change from call to call (lesson 3).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,15 +74,19 @@ class ModelT {
     ModelT m;
     PoseT<S> carry;  // placement of a locked run, to prepend to the next real hinge
     bool carrying = false;
-    std::vector<BodyT<S>> kept;
-    for (auto& b : base_first) {
+    // The kept bodies are compacted in place, base_first[0, n): one copy of the chain in
+    // memory, not three (a million bodies are 370 MB each).
+    std::size_t n_kept = 0;
+    for (std::size_t i = 0; i < base_first.size(); ++i) {
+      BodyT<S>& b = base_first[i];
       if (b.hinge.type == HingeType::Locked) {
-        if (kept.empty())
+        if (n_kept == 0)
           throw Error("body '" + b.name + "': a locked hinge next to the base fixes the body " +
                       "to the ground; remove it from the chain");
+        BodyT<S>& inboard = base_first[n_kept - 1];
         const PoseT<S> T = (carrying ? carry : PoseT<S>()) * b.placement;  // O_parent -> O_b
-        kept.back().M = kept.back().M + transform(PhiT<S>(T), b.M);
-        m.merged_.emplace_back(b.name, int(kept.size()) - 1);  // base-first index, for now
+        inboard.M = inboard.M + transform(PhiT<S>(T), b.M);
+        m.merged_.emplace_back(b.name, int(n_kept) - 1);  // base-first index, for now
         carry = T;
         carrying = true;
         continue;
@@ -91,11 +96,14 @@ class ModelT {
       carry = PoseT<S>();
       const int n_rest = b.hinge.nq() <= 2 ? b.hinge.nq() : 0;
       if (b.rest.size() != n_rest) b.rest.setZero(n_rest);
-      kept.push_back(std::move(b));
+      if (n_kept != i) base_first[n_kept] = std::move(b);
+      ++n_kept;
     }
     // merged_ refer to base-first parents; bodies are stored tip first.
-    const int n = int(kept.size());
-    m.bodies_.assign(kept.rbegin(), kept.rend());
+    const int n = int(n_kept);
+    base_first.resize(n_kept);
+    std::reverse(base_first.begin(), base_first.end());
+    m.bodies_ = std::move(base_first);
     for (auto& mm : m.merged_) mm.second = n - mm.second;  // course number k
     int q = 0, v = 0;
     for (int k = 1; k <= n; ++k) {  // coordinates in course order: tip (k = 1) first

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -21,7 +22,13 @@ struct SimulationOptionsT {
   /// A run whose \f$\|\beta\|_\infty\f$ exceeds this factor times \f$\max(1,
   /// \|\beta_0\|_\infty)\f$, or whose state is not finite, has blown up.
   S blowup_factor = S(1e6);
+  /// When set, the run stops at the first step boundary after `*stop` becomes non-zero (a
+  /// signal handler sets it): SimulationSummary::interrupted, the state is the last step's.
+  const volatile std::sig_atomic_t* stop = nullptr;
 };
+
+/// The most fixed steps a run takes: step counts are exact in a double up to \f$2^{53}\f$.
+inline constexpr double kMaxSteps = 9007199254740992.0;
 using SimulationOptions = SimulationOptionsT<double>;
 
 /// What a run did.
@@ -33,6 +40,8 @@ struct SimulationSummary {
   double energy0 = 0;           ///< energy at t = 0
   double energy1 = 0;           ///< energy at the end
   double max_energy_drift = 0;  ///< max |E(t) - E(0)| over the steps
+  double t = 0;                 ///< the time reached (t_end unless interrupted)
+  bool interrupted = false;     ///< stopped by SimulationOptionsT::stop before t_end
 };
 
 /// An estimate of the largest \f$|\lambda|\f$ of the Jacobian of the rate at \p x (power
@@ -98,6 +107,14 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   if (adaptive && !(opt.tol > S(0))) throw Error("simulate: dopri5 needs a tolerance (--tol)");
   if (!adaptive && !(opt.dt > S(0))) throw Error("simulate: a fixed-step method needs --dt > 0");
   if (!(opt.t_end >= S(0))) throw Error("simulate: the end time must be >= 0");
+  if (!adaptive && !(double(opt.t_end) / double(opt.dt) <= kMaxSteps)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "simulate: t_end / dt = %.6g / %.6g = %.3g steps, more than a run can count "
+                  "(%.4g); take a larger step or a shorter run",
+                  double(opt.t_end), double(opt.dt), double(opt.t_end) / double(opt.dt), kMaxSteps);
+    throw Error(buf);
+  }
   const int nv = sys.model().nv();
   StepperT<S> stepper(sys);
   SimulationSummary sum;
@@ -110,7 +127,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   S h = opt.dt > S(0) ? opt.dt : S(1e-3) * std::max(opt.t_end, S(1e-3));
   // Fixed steps divide [0, t_end] evenly: h = t_end / ceil(t_end / dt).
   const long n_fixed =
-      adaptive ? 0 : std::max(1L, long(std::ceil(double(opt.t_end / opt.dt) - 1e-9)));
+      adaptive ? 0 : std::max(1L, long(std::ceil(double(opt.t_end) / double(opt.dt) - 1e-9)));
   if (!adaptive) h = opt.t_end / S(n_fixed);
   observe(t, x);
   StateT<S> x1 = x;
@@ -132,7 +149,12 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     throw Error(buf);
   };
   while (adaptive ? t < opt.t_end : sum.steps < n_fixed) {
+    if (opt.stop && *opt.stop) {
+      sum.interrupted = true;
+      break;
+    }
     if (adaptive) h = std::min(h, opt.t_end - t);
+    const S h_step = h;  // the step being taken (dopri5 changes h once it is accepted)
     bool ok = true;
     try {
       switch (opt.method) {
@@ -182,23 +204,28 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       t = S(sum.steps + 1) * h;
     }
     if (!x1.theta.allFinite() || !x1.beta.allFinite()) {
-      t = adaptive ? t - h : S(sum.steps) * h;
-      blow_up("the state is not finite", h);
+      t = adaptive ? t - h_step : S(sum.steps) * h;
+      blow_up("the state is not finite", h_step);
     }
     if (x1.beta.template lpNorm<Eigen::Infinity>() > opt.blowup_factor * v_ref) {
       char what[120];
       std::snprintf(what, sizeof what, "|beta| = %.3g, over %.3g times its start",
                     double(x1.beta.template lpNorm<Eigen::Infinity>()), double(opt.blowup_factor));
-      t = adaptive ? t - h : S(sum.steps) * h;
-      blow_up(what, h);
+      t = adaptive ? t - h_step : S(sum.steps) * h;
+      blow_up(what, h_step);
+    }
+    const S E = sys.energy(x1);
+    if (!std::isfinite(double(E))) {
+      t = adaptive ? t - h_step : S(sum.steps) * h;
+      blow_up("the energy is not finite", h_step);
     }
     x = x1;
     ++sum.steps;
-    const S E = sys.energy(x);
     sum.energy1 = double(E);
     sum.max_energy_drift = std::max(sum.max_energy_drift, double(std::abs(E - E0)));
     observe(t, x);
   }
+  sum.t = double(t);
   sum.evaluations = sys.evaluations() - evals0;
   sum.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,476 @@
+/// \file
+/// The `soa` command as a hostile user drives it (issue 11): nothing lost, nothing silent.
+/// Each test runs the program (fork/exec) and checks what it left behind:
+/// - `--out` that is the scene (other spelling, symbolic or hard link) is refused, the
+///   scene intact; a full disk (`/dev/full`) on --out or stdout is exit 1 with the reason;
+/// - SIGINT/SIGTERM stop a run at a step boundary: complete rows, the summary says so,
+///   exit 130/143, no temporary file left; a blow-up keeps the finite rows before it;
+/// - CSV fields and JSON strings survive names with commas, quotes, line breaks and file
+///   names that are not UTF-8; --every/--out-dt thin the trajectory;
+/// - the dense cross-checks are skipped above their size and say so; a mass matrix too
+///   large is refused, and running out of memory is one line naming what was being built;
+/// - each verb's --help lists only the options it takes.
+/// Suite cli_robustness.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+std::string scene_path(const std::string& name) {
+  return std::string(SOA_SOURCE_DIR) + "/lessons/03-serial-chain-kinematics/scenes/" + name;
+}
+std::string test_scene(const std::string& name) {
+  return std::string(SOA_SOURCE_DIR) + "/tests/scenes/" + name;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+/// A scratch folder per test, removed at the end.
+class Scratch {
+ public:
+  Scratch() {
+    std::string t = (fs::temp_directory_path() / "soa-cli-XXXXXX").string();
+    dir_ = ::mkdtemp(t.data());
+  }
+  ~Scratch() { fs::remove_all(dir_); }
+  std::string operator/(const std::string& name) const { return dir_ + "/" + name; }
+  const std::string& dir() const { return dir_; }
+  /// The files in the folder, hidden ones included.
+  std::vector<std::string> files() const {
+    std::vector<std::string> f;
+    for (const auto& e : fs::directory_iterator(dir_)) f.push_back(e.path().filename().string());
+    return f;
+  }
+
+ private:
+  std::string dir_;
+};
+
+struct Outcome {
+  int rc = -1;
+  std::string out, err;
+};
+
+struct Options {
+  std::string stdout_path;   ///< where stdout goes (a temporary file when empty)
+  rlim_t address_space = 0;  ///< RLIMIT_AS for the child, when non-zero
+};
+
+/// Starts soa with \p args; stdout and stderr go to files in \p s.
+pid_t start(const Scratch& s, const std::vector<std::string>& args, const Options& o = {}) {
+  const std::string out = o.stdout_path.empty() ? s / "stdout.txt" : o.stdout_path;
+  const std::string err = s / "stderr.txt";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fo = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fe = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fo, 1);
+    ::dup2(fe, 2);
+    if (o.address_space) {
+      const rlimit l{o.address_space, o.address_space};
+      ::setrlimit(RLIMIT_AS, &l);
+    }
+    std::vector<char*> argv{const_cast<char*>(SOA_CLI)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(SOA_CLI, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+Outcome wait_for(const Scratch& s, pid_t pid, const Options& o = {}) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  Outcome r;
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+  if (o.stdout_path.empty()) r.out = read_file(s / "stdout.txt");
+  r.err = read_file(s / "stderr.txt");
+  return r;
+}
+
+Outcome soa(const Scratch& s, const std::vector<std::string>& args, const Options& o = {}) {
+  return wait_for(s, start(s, args, o), o);
+}
+
+/// Exactly one line on stderr.
+void expect_one_line(const Outcome& r) {
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << r.err;
+}
+
+/// The records of a CSV file as RFC 4180 reads them.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    std::string& field = rows.back().back();
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+        field += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        field += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().emplace_back();
+    } else if (c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      field += c;
+    }
+  }
+  if (rows.back().size() == 1 && rows.back()[0].empty()) rows.pop_back();
+  return rows;
+}
+
+/// Every data row has the header's number of fields, all finite numbers.
+void expect_complete_rows(const std::string& csv, std::size_t min_rows) {
+  const auto rows = parse_csv(read_file(csv));
+  ASSERT_GE(rows.size(), min_rows + 1) << csv;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    ASSERT_EQ(rows[r].size(), rows[0].size()) << csv << " row " << r;
+    for (const std::string& f : rows[r]) {
+      char* end = nullptr;
+      const double v = std::strtod(f.c_str(), &end);
+      ASSERT_TRUE(end == f.c_str() + f.size() && !f.empty() && std::isfinite(v))
+          << csv << " row " << r << ": \"" << f << "\"";
+    }
+  }
+}
+
+/// A revolute chain of n bodies as scene JSON.
+std::string chain_scene(int n) {
+  std::string s = "{\"gravity\": [0, 0, -9.81], \"bodies\": [\n";
+  for (int i = 0; i < n; ++i) {
+    s += std::string(i ? ",\n" : "") + "{\"name\": \"b" + std::to_string(i) + "\", \"parent\": \"" +
+         (i ? "b" + std::to_string(i - 1) : std::string("base")) +
+         "\", \"mass\": 1, \"com\": [0.5, 0, 0], \"inertia\": {\"Ixx\": 0.01, \"Iyy\": 0.1, "
+         "\"Izz\": 0.1}, \"hinge\": {\"type\": \"revolute\", \"axis\": [0, " +
+         (i % 2 ? "1" : "0") + ", " + (i % 2 ? "0" : "1") +
+         "], \"placement\": {\"position\": [1, 0, 0]}}, \"q\": [0.01]}";
+  }
+  return s + "]}\n";
+}
+
+// --- output files ---------------------------------------------------------------------
+
+TEST(cli_robustness, OutThatIsTheSceneIsRefusedAndTheSceneKept) {
+  Scratch s;
+  const std::string scene = s / "arm7.json";
+  fs::copy_file(scene_path("arm7.json"), scene);
+  const std::string before = read_file(scene);
+  fs::create_symlink(scene, s / "link.json");
+  ASSERT_EQ(::link(scene.c_str(), (s / "hard.json").c_str()), 0);
+  for (const std::string& out : {scene, s.dir() + "/./arm7.json", s.dir() + "//arm7.json",
+                                 s / "link.json", s / "hard.json"}) {
+    const Outcome r = soa(s, {"simulate", scene, "--dt", "0.01", "--t-end", "0.05", "--out", out});
+    EXPECT_EQ(r.rc, 1) << out;
+    EXPECT_EQ(r.err,
+              "--out " + out + ": is the scene file " + scene + "; refusing to overwrite it\n");
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(read_file(scene), before) << out;
+  }
+  const Outcome dir = soa(s, {"simulate", scene, "--dt", "0.01", "--out", s.dir()});
+  EXPECT_EQ(dir.rc, 1);
+  EXPECT_EQ(dir.err, "--out " + s.dir() + ": is a directory\n");
+}
+
+TEST(cli_robustness, AFullDiskIsAnErrorWithTheReason) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  Scratch s;
+  const Outcome csv = soa(s, {"simulate", scene_path("arm7.json"), "--dt", "0.01", "--t-end",
+                              "0.05", "--out", "/dev/full"});
+  EXPECT_EQ(csv.rc, 1);
+  EXPECT_EQ(csv.err, "--out /dev/full: No space left on device\n");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"kinematics", scene_path("arm7.json")},
+        {"simulate", scene_path("arm7.json"), "--dt", "0.01", "--t-end", "0.05"},
+        {"mass-matrix", scene_path("chain50.json"), "--inverse"},
+        {"--help"}}) {
+    Options o;
+    o.stdout_path = "/dev/full";
+    const Outcome r = soa(s, args, o);
+    EXPECT_EQ(r.rc, 1) << args[0];
+    EXPECT_EQ(r.err, "stdout: No space left on device\n") << args[0];
+  }
+}
+
+TEST(cli_robustness, ACompleteRunReplacesTheFileAndLeavesNoTemporaryFile) {
+  Scratch s;
+  const std::string csv = s / "traj.csv";
+  write_file(csv, "old contents\n");
+  const Outcome r = soa(s, {"simulate", scene_path("double_pendulum.json"), "--dt", "0.01",
+                            "--t-end", "0.1", "--out", csv});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  expect_complete_rows(csv, 11);
+  std::vector<std::string> files = s.files();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"stderr.txt", "stdout.txt", "traj.csv"}));
+  struct stat st;
+  ASSERT_EQ(::stat(csv.c_str(), &st), 0);
+  EXPECT_NE(st.st_mode & 0044, 0u) << "a new trajectory file is readable as any new file";
+}
+
+// Ctrl-C or SIGTERM part way: complete rows renamed to the target, the summary, 130/143.
+TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    Scratch s;
+    const std::string csv = s / "traj.csv";
+    const pid_t pid = start(s, {"simulate", scene_path("chain50.json"), "--dt", "1e-4", "--t-end",
+                                "1e6", "--out", csv});
+    // Wait until the run has written rows (its temporary file grows), then signal.
+    const auto t0 = std::chrono::steady_clock::now();
+    bool growing = false;
+    while (!growing && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      for (const std::string& f : s.files())
+        if (f.rfind(".traj.csv.", 0) == 0 && fs::file_size(s / f) > 0) growing = true;
+    }
+    ASSERT_TRUE(growing) << "no temporary trajectory file appeared";
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ::kill(pid, sig);
+    const Outcome r = wait_for(s, pid);
+    EXPECT_EQ(r.rc, 128 + sig) << r.err;
+    expect_one_line(r);
+    const std::string name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+    EXPECT_NE(r.err.find("simulate: interrupted by " + name + " at t = "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("the trajectory up to there is in " + csv), std::string::npos) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["interrupted"]["signal"], name);
+    const double t = j["interrupted"]["t"].get<double>();
+    EXPECT_GT(t, 0);
+    EXPECT_LT(t, 1e6);
+    expect_complete_rows(csv, 2);
+    const auto rows = parse_csv(read_file(csv));
+    EXPECT_EQ(long(rows.size()) - 1, j["rows"].get<long>());
+    EXPECT_EQ(std::stod(rows.back()[0]), t) << "the last row is the state at the stop";
+    for (const std::string& f : s.files()) EXPECT_EQ(f.rfind(".traj", 0), std::string::npos) << f;
+  }
+}
+
+TEST(cli_robustness, ABlowUpKeepsTheFiniteRowsBeforeIt) {
+  Scratch s;
+  const std::string csv = s / "traj.csv";
+  const Outcome r = soa(s, {"simulate", test_scene("stiff_pendulum.json"), "--integrator", "rk4",
+                            "--dt", "0.001", "--t-end", "1", "--out", csv});
+  EXPECT_EQ(r.rc, 1);
+  expect_one_line(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("blow-up at t = "), std::string::npos) << r.err;
+  const std::size_t at = r.err.find("; the trajectory up to t = ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  expect_complete_rows(csv, 2);
+  const auto rows = parse_csv(read_file(csv));
+  double t_kept = 0;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + at, "; the trajectory up to t = %lf", &t_kept), 1);
+  EXPECT_NEAR(std::stod(rows.back()[0]), t_kept, 1e-6 * std::max(1.0, t_kept));
+}
+
+// --- what is written ------------------------------------------------------------------
+
+TEST(cli_robustness, NamesWithCommasQuotesAndLineBreaksSurviveTheCsv) {
+  Scratch s;
+  std::string scene = chain_scene(3);
+  const std::vector<std::string> names = {"a,b", "say \"hi\"", "two\nlines"};
+  const std::vector<std::string> escaped = {"a,b", "say \\\"hi\\\"", "two\\nlines"};
+  for (int i = 0; i < 3; ++i) {
+    const std::string old = "\"b" + std::to_string(i) + "\"";
+    for (std::size_t at = scene.find(old); at != std::string::npos; at = scene.find(old))
+      scene.replace(at, old.size(), "\"" + escaped[i] + "\"");
+  }
+  write_file(s / "names.json", scene);
+  const std::string csv = s / "traj.csv";
+  const Outcome r =
+      soa(s, {"simulate", s / "names.json", "--dt", "0.01", "--t-end", "0.02", "--out", csv});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto rows = parse_csv(read_file(csv));
+  ASSERT_EQ(rows.size(), 4u);
+  std::vector<std::string> header = {"t"};
+  for (const std::string& n : names) header.push_back("q:" + n);
+  for (const std::string& n : names) header.push_back("qd:" + n);
+  header.push_back("energy");
+  header.push_back("quaternion_norm_error");
+  EXPECT_EQ(rows[0], header);
+  EXPECT_EQ(json::parse(r.out)["columns"], json(names));
+}
+
+TEST(cli_robustness, FileNamesThatAreNotUtf8GiveValidJson) {
+  Scratch s;
+  const std::string scene = s / "sc\xff\xfe.json";
+  fs::copy_file(scene_path("double_pendulum.json"), scene);
+  const std::string stem_scene = s / "noname\xc3.json";  // a title from the file name
+  std::string text = read_file(scene_path("double_pendulum.json"));
+  text.erase(text.find("\"name\": \"double pendulum\","), 26);
+  write_file(stem_scene, text);
+  const Outcome id = soa(s, {"inverse-dynamics", stem_scene});
+  ASSERT_EQ(id.rc, 0) << id.err;
+  json j;
+  ASSERT_NO_THROW(j = json::parse(id.out)) << id.out;
+  EXPECT_EQ(j["scene"], "noname\xef\xbf\xbd");  // U+FFFD for the stray byte
+  const std::string csv = s / "tr\xff.csv";
+  const Outcome sim = soa(s, {"simulate", scene, "--dt", "0.01", "--t-end", "0.02", "--out", csv});
+  ASSERT_EQ(sim.rc, 0) << sim.err;
+  ASSERT_NO_THROW(j = json::parse(sim.out)) << sim.out;
+  EXPECT_EQ(j["trajectory"], s.dir() + "/tr\xef\xbf\xbd.csv");
+  EXPECT_TRUE(fs::exists(csv));
+}
+
+TEST(cli_robustness, EveryAndOutDtThinTheTrajectory) {
+  Scratch s;
+  const std::string csv = s / "traj.csv";
+  struct Case {
+    std::vector<std::string> extra;
+    std::vector<double> times;
+  };
+  auto range = [](int n, double h) {
+    std::vector<double> t;
+    for (int i = 0; i <= n; ++i) t.push_back(i * h);
+    return t;
+  };
+  std::vector<double> every7 = {};
+  for (int i = 0; i <= 98; i += 7) every7.push_back(i * 0.01);
+  every7.push_back(1.0);
+  for (const Case& c : {Case{{"--every", "10"}, range(10, 0.1)}, Case{{"--every", "7"}, every7},
+                        Case{{"--out-dt", "0.05"}, range(20, 0.05)},
+                        Case{{"--out-dt", "0.3"}, {0, 0.3, 0.6, 0.9, 1.0}}}) {
+    std::vector<std::string> args = {
+        "simulate", scene_path("double_pendulum.json"), "--dt", "0.01", "--t-end", "1", "--out",
+        csv};
+    args.insert(args.end(), c.extra.begin(), c.extra.end());
+    const Outcome r = soa(s, args);
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const auto rows = parse_csv(read_file(csv));
+    ASSERT_EQ(rows.size(), c.times.size() + 1) << c.extra[0] << " " << c.extra[1];
+    for (std::size_t i = 0; i < c.times.size(); ++i)
+      EXPECT_NEAR(std::stod(rows[i + 1][0]), c.times[i], 1e-9) << c.extra[1] << " row " << i;
+    EXPECT_EQ(json::parse(r.out)["rows"].get<std::size_t>(), c.times.size());
+  }
+  const Outcome both = soa(s, {"simulate", scene_path("arm7.json"), "--dt", "0.01", "--out", csv,
+                               "--every", "2", "--out-dt", "0.1"});
+  EXPECT_EQ(both.rc, 1);
+  const Outcome alone =
+      soa(s, {"simulate", scene_path("arm7.json"), "--dt", "0.01", "--every", "2"});
+  EXPECT_EQ(alone.rc, 1);
+  EXPECT_EQ(alone.err,
+            scene_path("arm7.json") + ": --every: needs --out, the trajectory file it thins out\n");
+}
+
+// --- sizes ----------------------------------------------------------------------------
+
+TEST(cli_robustness, DenseCrossChecksAreSkippedAboveTheirSizeAndSaySo) {
+  Scratch s;
+  write_file(s / "chain.json", chain_scene(2001));
+  const Outcome fd = soa(s, {"forward-dynamics", s / "chain.json"});
+  ASSERT_EQ(fd.rc, 0) << fd.err;
+  const json j = json::parse(fd.out);
+  EXPECT_FALSE(j["check"].contains("dense_difference"));
+  EXPECT_EQ(j["check"]["dense_skipped"].get<std::string>().rfind("n_v = 2001 is over 2000", 0), 0u);
+  EXPECT_LT(j["check"]["round_trip_residual"].get<double>(), 1e-12);
+  const Outcome small = soa(s, {"forward-dynamics", scene_path("chain50.json"), "--check"});
+  ASSERT_EQ(small.rc, 0) << small.err;
+  EXPECT_TRUE(json::parse(small.out)["check"].contains("dense_difference"));
+  write_file(s / "huge.json", chain_scene(20001));
+  const Outcome mm = soa(s, {"mass-matrix", s / "huge.json"});
+  EXPECT_EQ(mm.rc, 1);
+  expect_one_line(mm);
+  EXPECT_EQ(mm.err.rfind(s / "huge.json" + ": mass-matrix: n_v = 20001 is over 20000", 0), 0u)
+      << mm.err;
+}
+
+TEST(cli_robustness, OutOfMemoryIsOneLineNamingWhatWasBeingBuilt) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit";
+#else
+  Scratch s;
+  write_file(s / "chain.json", chain_scene(15000));
+  Options o;
+  o.address_space = rlim_t(1) << 30;  // 1 GiB; the 15000 x 15000 matrix needs 1.8 GB
+  const Outcome r = soa(s, {"mass-matrix", s / "chain.json"}, o);
+  EXPECT_EQ(r.rc, 1);
+  expect_one_line(r);
+  EXPECT_EQ(r.err,
+            s / "chain.json" + ": out of memory while building the 15000 x 15000 mass matrix\n");
+  EXPECT_EQ(r.out, "");
+#endif
+}
+
+TEST(cli_robustness, InputsThatAreNotSceneFilesAreRefusedPromptly) {
+  Scratch s;
+  for (const std::string dev : {"/dev/zero", "/dev/urandom"}) {
+    const Outcome r = soa(s, {"kinematics", dev});
+    EXPECT_EQ(r.rc, 1) << dev;
+    expect_one_line(r);
+    EXPECT_EQ(r.err.rfind(dev + ": ", 0), 0u) << r.err;
+  }
+  const Outcome dir = soa(s, {"kinematics", s.dir()});
+  EXPECT_EQ(dir.rc, 1);
+  EXPECT_EQ(dir.err, s.dir() + ": is a directory, not a scene file\n");
+}
+
+// --- help -----------------------------------------------------------------------------
+
+TEST(cli_robustness, EachVerbsHelpListsOnlyItsOptions) {
+  Scratch s;
+  const std::vector<std::string> options = {
+      "--q",          "--qd", "--qdd", "--tau",   "--body", "--inverse", "--check",
+      "--integrator", "--dt", "--tol", "--t-end", "--out",  "--every",   "--out-dt"};
+  const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
+      {"kinematics", {"--q", "--qd", "--qdd", "--body"}},
+      {"jacobian", {"--q", "--body"}},
+      {"inverse-dynamics", {"--q", "--qd", "--qdd"}},
+      {"forward-dynamics", {"--q", "--qd", "--tau", "--check"}},
+      {"mass-matrix", {"--q", "--inverse", "--check"}},
+      {"simulate",
+       {"--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--out", "--every",
+        "--out-dt"}}};
+  for (const auto& [verb, takes] : verbs) {
+    const Outcome r = soa(s, {verb, "--help"});
+    ASSERT_EQ(r.rc, 0);
+    for (const std::string& o : options) {
+      bool found = false;  // as a whole option: not followed by a letter, digit or '-'
+      for (std::size_t at = r.out.find(o); at != std::string::npos && !found;
+           at = r.out.find(o, at + 1)) {
+        const char next = at + o.size() < r.out.size() ? r.out[at + o.size()] : ' ';
+        found = !std::isalnum(static_cast<unsigned char>(next)) && next != '-';
+      }
+      const bool expected = std::find(takes.begin(), takes.end(), o) != takes.end();
+      EXPECT_EQ(found, expected) << verb << " --help and " << o << ":\n" << r.out;
+    }
+  }
+}
+
+}  // namespace
