@@ -102,7 +102,7 @@ const Scene::Frame& find_frame(const Scene& scene, const std::string& name) {
 Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
                 const Scene::Frame* only) {
   const Model& m = scene.model;
-  auto ws = std::make_shared<Workspace>(m);
+  auto ws = std::make_shared<Workspace>(Workspace::lazy());  // phi, pose, V, a, alpha
   update_phi(m, x.theta, *ws);
   update_poses(m, *ws);
   update_velocities(m, x, *ws);
@@ -116,14 +116,14 @@ Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot
       if (only && only->name != f.name) continue;
       // Frame F fixed on body k at ^{O_k}T_F: V(F) = phi*(O_k, F) V(k), and its acceleration
       // adds the centripetal term of the offset (as jacobian_dot_times_beta() does).
-      const Phi phi(f.offset);
-      const Pose pose = ws->pose[f.k - 1] * f.offset;
+      const Phi phi(f.offset());
+      const Pose pose = ws->pose[f.k - 1] * f.offset();
       const Velocity V = phi.transpose_apply(ws->V[f.k - 1]);
       const Vec3<double> om = ws->V[f.k - 1].angular();
       const Acceleration alpha =
           phi.transpose_apply(ws->alpha[f.k - 1]) +
           Acceleration(Vec3<double>::Zero(),
-                       f.offset.R().transpose() * om.cross(om.cross(f.offset.l())));
+                       f.offset().R().transpose() * om.cross(om.cross(f.offset().l())));
       w.key(f.name);
       w.begin_object();
       w.key("position");
@@ -143,12 +143,12 @@ Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot
 
 Emit jacobian(const Scene& scene, const State& x, const Scene::Frame& frame) {
   const Model& m = scene.model;
-  Workspace ws(m);
+  Workspace ws = Workspace::lazy();  // phi and pose only
   update_phi(m, x.theta, ws);
   update_poses(m, ws);
   auto J = std::make_shared<Eigen::Matrix<double, 6, Eigen::Dynamic>>();
   set_stage("building the Jacobian (6 x " + std::to_string(m.nv()) + ")");
-  soa::jacobian(m, x.theta, ws, frame.k, frame.offset, *J);
+  soa::jacobian(m, x.theta, ws, frame.k, frame.offset(), *J);
   return [&scene, &frame, J](JsonWriter& w) {
     const std::vector<int> idx = file_v_index(scene);
     w.begin_object();
@@ -174,7 +174,7 @@ Emit inverse_dynamics(const Scene& scene, const State& x, const VecX<double>& be
   const Model& m = scene.model;
   auto T = std::make_shared<VecX<double>>(m.nv());
   {
-    Workspace ws(m);
+    Workspace ws = Workspace::lazy();  // no poses
     soa::inverse_dynamics(m, x, beta_dot, scene.f_ext, ws, *T);
   }
   return [&scene, T](JsonWriter& w) {
@@ -196,7 +196,7 @@ Emit forward_dynamics(const Scene& scene, const State& x, const VecX<double>& ta
   };
   auto c = std::make_shared<Checks>();
   {
-    Workspace ws(m);
+    Workspace ws = Workspace::lazy();  // no poses
     {
       ForwardDynamics fd = ForwardDynamics::lean(m);  // 56 bytes a body, not 1.8 kB
       soa::forward_dynamics(m, x, tau, scene.f_ext, ws, fd, *qdd);

@@ -747,11 +747,12 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
       Scene::Frame f;
       f.name = b.name;
       f.k = k[i] = k[i - 1];
-      f.offset =
-          (locked.empty() || locked.back().first + 1 != i ? Pose() : locked.back().second.offset) *
-          b.placement;
+      f.set_offset((locked.empty() || locked.back().first + 1 != i
+                        ? Pose()
+                        : locked.back().second.offset()) *
+                   b.placement);
       f.locked = true;
-      M = M + transform(Phi(f.offset), b.M);  // as ModelT::from_base_first() does
+      M = M + transform(Phi(f.offset()), b.M);  // as ModelT::from_base_first() does
       if (!is_finite(M))
         r.fail(kBodies.index(i), "merged into " + body_path(carrier) +
                                      " through its locked hinge, its inertia about that body's "
@@ -763,7 +764,7 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
     if (!(fb.flags[i] & FileBodies::kLocked)) return Pose();
     return std::lower_bound(locked.begin(), locked.end(), i,
                             [](const auto& l, std::size_t b) { return l.first < b; })
-        ->second.offset;
+        ->second.offset();
   };
 
   // External forces, moved to O_k of the model body (a locked body's force by phi(O_k, F)).

@@ -51,6 +51,11 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
     soa::ForwardDynamics lean = soa::ForwardDynamics::lean(m);
     EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, lean, out); }), 0)
         << "forward_dynamics (lean storage), case " << i;
+    soa::Workspace lazy = soa::Workspace::lazy();  // sized by its first use, then none
+    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, lazy, lean, out); }), 0)
+        << "forward_dynamics (lazy workspace), case " << i;
+    EXPECT_EQ(allocations([&] { soa::inverse_dynamics(m, x, v, f_ext, lazy, out); }), 0)
+        << "inverse_dynamics (lazy workspace), case " << i;
     soa::MassMatrixInverse w(m);
     soa::MatX<double> M(m.nv(), m.nv());
     EXPECT_EQ(allocations([&] { soa::mass_matrix_inverse(m, x, ws, w, M); }), 0)

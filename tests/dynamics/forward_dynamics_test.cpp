@@ -10,7 +10,9 @@
 // - an empty external-force list gives bitwise the result of explicit zero forces;
 // - a singular D(k) and non-finite inputs stop with soa::Error naming the body;
 // - the lean storage (ForwardDynamics::lean(), for million-body chains) gives bitwise the
-//   result, the accelerations alpha(k) and the errors of the full storage.
+//   result, the accelerations alpha(k) and the errors of the full storage;
+// - a lazy workspace (Workspace::lazy()) holds only the parts the functions run fill, with
+//   bitwise the results of a full one.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -221,6 +223,58 @@ TEST(dynamics_Forward, NonFiniteInputsNameTheBody) {
     EXPECT_NE(msg.find("'victim'"), std::string::npos) << what << ": " << msg;
     EXPECT_NE(msg.find("not finite"), std::string::npos) << what << ": " << msg;
     EXPECT_EQ(message_of(c, true), msg) << what;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+template <class T>
+bool same(const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!(a[i].vector() == b[i].vector())) return false;
+  return true;
+}
+
+TEST(dynamics_Workspace, LazyHoldsOnlyTheUsedPartsWithTheSameResults) {
+  Random<double> rnd(37);
+  for (int i = 0; i < kCases; ++i) {
+    const DynamicsCase<double> c(rnd, i);
+    const soa::Model& m = c.m;
+    const VecX qdd = soa::test::random_vector(rnd, m.nv());
+    VecX T_full(m.nv()), T_lazy(m.nv());
+    {  // inverse dynamics: no poses, no b
+      soa::Workspace full(m), lazy = soa::Workspace::lazy();
+      soa::inverse_dynamics(m, c.x, qdd, c.f_ext, full, T_full);
+      soa::inverse_dynamics(m, c.x, qdd, c.f_ext, lazy, T_lazy);
+      ASSERT_TRUE((T_full.array() == T_lazy.array()).all()) << "case " << i;
+      EXPECT_TRUE(same(full.f, lazy.f) && same(full.alpha, lazy.alpha)) << "case " << i;
+      EXPECT_TRUE(lazy.pose.empty() && lazy.b.empty()) << "case " << i;
+    }
+    {  // forward dynamics: no poses, no f
+      soa::Workspace full(m), lazy = soa::Workspace::lazy();
+      soa::ForwardDynamics fd(m);
+      soa::forward_dynamics(m, c.x, c.T, c.f_ext, full, fd, T_full);
+      soa::forward_dynamics(m, c.x, c.T, c.f_ext, lazy, fd, T_lazy);
+      ASSERT_TRUE((T_full.array() == T_lazy.array()).all()) << "case " << i;
+      EXPECT_TRUE(same(full.alpha, lazy.alpha) && same(full.b, lazy.b)) << "case " << i;
+      EXPECT_TRUE(lazy.pose.empty() && lazy.f.empty()) << "case " << i;
+    }
+    {  // kinematics: phi, poses, V, a, alpha only
+      soa::Workspace full(m), lazy = soa::Workspace::lazy();
+      for (soa::Workspace* ws : {&full, &lazy}) {
+        soa::update_phi(m, c.x.theta, *ws);
+        soa::update_poses(m, *ws);
+        soa::update_velocities(m, c.x, *ws);
+        soa::update_accelerations(m, c.x, qdd.data(), soa::Acceleration(), *ws);
+      }
+      EXPECT_TRUE(same(full.V, lazy.V) && same(full.alpha, lazy.alpha)) << "case " << i;
+      for (int k = 1; k <= m.n(); ++k)
+        ASSERT_TRUE(full.pose[k - 1].matrix() == lazy.pose[k - 1].matrix()) << "case " << i;
+      EXPECT_TRUE(lazy.b.empty() && lazy.f.empty()) << "case " << i;
+    }
   }
 }
 

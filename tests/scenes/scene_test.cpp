@@ -330,7 +330,7 @@ TEST(scene_format, LockedBodyRidesOnItsParent) {
     update_phi(b.model, b.state.theta, wb);
     update_poses(b.model, wb);
     const Pose pa = wa.pose[a.frames[j].k - 1];
-    const Pose pb = wb.pose[b.frames[j].k - 1] * b.frames[j].offset;
+    const Pose pb = wb.pose[b.frames[j].k - 1] * b.frames[j].offset();
     worst_pose.add(rel(pa.matrix(), pb.matrix()), c);
   }
   EXPECT_LE(worst_T.value(), 1024 * eps<double>());

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,16 @@ struct Scene {
   struct Frame {
     std::string name;
     int k = 0;            ///< the course number of the model body it is fixed on
-    Pose offset;          ///< \f${}^{O_k}T_F\f$
     bool locked = false;  ///< merged through a locked hinge (no coordinates of its own)
+    /// \f${}^{O_k}T_F\f$: the identity unless the body is locked.
+    const Pose& offset() const {
+      static const Pose identity;
+      return offset_ ? *offset_ : identity;
+    }
+    void set_offset(const Pose& T) { offset_ = std::make_shared<const Pose>(T); }
+
+   private:
+    std::shared_ptr<const Pose> offset_;  // only locked bodies have one: 56 bytes a frame
   };
   /// Every body of the file, in the order of the file, locked ones included.
   std::vector<Frame> frames;

@@ -86,6 +86,7 @@ void inverse_dynamics_composite(const ModelT<S>& m, const StateT<S>& x, const Ve
       m.has_gravity() ? gravity_base_acceleration(m) : AccelerationT<S>();
   update_accelerations(m, x, beta_dot.data(), alpha_base, ws);
   composite_inertias(m, ws, R);
+  WorkspaceT<S>::size(ws.f, m);
   ForceT<S> y;
   for (int k = 1; k <= m.n(); ++k) {
     const BodyT<S>& B = m.body(k);

@@ -97,6 +97,11 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
                       const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, ForwardDynamicsT<S>& fd,
                       VecX<S>& beta_dot) {
   const int n = m.n();
+  WorkspaceT<S>::size(ws.phi, m);
+  WorkspaceT<S>::size(ws.V, m);
+  WorkspaceT<S>::size(ws.a, m);
+  WorkspaceT<S>::size(ws.b, m);
+  WorkspaceT<S>::size(ws.alpha, m);
   // A non-finite theta would stop the joint transforms with a message that names no body.
   if (!x.theta.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
   const bool moving = !x.beta.isZero(0);

@@ -73,6 +73,11 @@ EIGEN_ALWAYS_INLINE void body_force(const SpatialInertiaT<S>& M, const Vec3<S>& 
 template <class S>
 void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& beta_dot,
                       const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, VecX<S>& T) {
+  WorkspaceT<S>::size(ws.phi, m);
+  WorkspaceT<S>::size(ws.V, m);
+  WorkspaceT<S>::size(ws.f, m);
+  WorkspaceT<S>::size(ws.a, m);
+  WorkspaceT<S>::size(ws.alpha, m);
   const bool moving = !x.beta.isZero(0);
   // Base to tip, in one pass: phi(k+1,k), V(k), a(k), alpha(k) (the scatter recursions of
   // update_phi(), update_velocities() and update_accelerations(), fused), and the body's own

@@ -59,6 +59,7 @@ EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta) {
 /// \f$\phi(k+1,k)\f$ for every body (joint_phi()).
 template <class S>
 void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
+  WorkspaceT<S>::size(ws.phi, m);
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
     ws.phi[k - 1] = joint_phi(B, theta.data() + B.q_offset);
@@ -70,6 +71,7 @@ void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
 template <class S>
 void update_poses(const ModelT<S>& m, WorkspaceT<S>& ws) {
   const int n = m.n();
+  WorkspaceT<S>::size(ws.pose, m);
   if (n == 0) return;
   ws.pose[n - 1] = ws.phi[n - 1].pose();
   for (int k = n - 1; k >= 1; --k) ws.pose[k - 1] = ws.pose[k] * ws.phi[k - 1].pose();
@@ -160,6 +162,8 @@ EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>
 template <class S>
 void update_velocities(const ModelT<S>& m, const StateT<S>& x, WorkspaceT<S>& ws) {
   const bool at_rest = x.beta.isZero(0);
+  WorkspaceT<S>::size(ws.V, m);
+  WorkspaceT<S>::size(ws.a, m);
   VelocityT<S> V_parent;
   for (int k = m.n(); k >= 1; --k) {
     if (at_rest) {
@@ -186,6 +190,7 @@ template <class S>
 void update_accelerations(const ModelT<S>& m, const StateT<S>& x, const S* beta_dot,
                           const AccelerationT<S>& alpha_base, WorkspaceT<S>& ws) {
   AccelerationT<S> alpha_parent = alpha_base;
+  WorkspaceT<S>::size(ws.alpha, m);
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
     AccelerationT<S> alpha = ws.phi[k - 1].transpose_apply(alpha_parent) + ws.a[k - 1];

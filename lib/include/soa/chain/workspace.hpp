@@ -25,6 +25,16 @@ template <class S>
 struct WorkspaceT {
   explicit WorkspaceT(const ModelT<S>& m)
       : phi(m.n()), pose(m.n()), V(m.n()), a(m.n()), alpha(m.n()), b(m.n()), f(m.n()) {}
+  /// A workspace whose parts are sized by the first function that fills them (each filling
+  /// function calls size()), so that it holds only what the computation uses: the `soa`
+  /// command on a chain of a million bodies (432 bytes a body in all; poses alone 96).
+  static WorkspaceT lazy() { return WorkspaceT(); }
+
+  /// Sizes \p part for \p m when it is not (once: nothing is allocated per call after).
+  template <class T>
+  static void size(std::vector<T>& part, const ModelT<S>& m) {
+    if (part.size() != std::size_t(m.n())) part.resize(std::size_t(m.n()));
+  }
 
   std::vector<PhiT<S>> phi;             ///< \f$\phi(k+1,k)\f$, as \f$(R, l)\f$
   std::vector<PoseT<S>> pose;           ///< \f${}^I T_{O_k}\f$, the pose of body k
@@ -33,6 +43,9 @@ struct WorkspaceT {
   std::vector<AccelerationT<S>> alpha;  ///< \f$\alpha(k)\f$
   std::vector<ForceT<S>> b;             ///< \f$b(k)\f$ (gyroscopic, less external forces)
   std::vector<ForceT<S>> f;             ///< inter-body force \f$f(k)\f$ on body k at \f$O_k\f$
+
+ private:
+  WorkspaceT() = default;
 };
 using Workspace = WorkspaceT<double>;
 
