@@ -371,23 +371,26 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
       }
     }
   };
+  auto clear_bar = [&] {
+    if (drew) std::fprintf(stderr, "\r%70s\r", "");
+  };
   SimulationSummary sum;
   try {
     sum = soa::simulate(sys, x, opt, observe);
   } catch (const OutputError&) {
-    if (drew) std::fprintf(stderr, "\r%70s\r", "");
+    clear_bar();
     throw;
   } catch (const Error& e) {
     // A blow-up (or a singular D(k)) part way: the rows before it are kept, complete; x is
     // the last accepted state.
-    if (drew) std::fprintf(stderr, "\r%70s\r", "");
+    clear_bar();
     if (!file || step < 0) throw;
     if (written_t != last_t) write_row(last_t, x);
     file->commit();
     throw Error(std::string(e.what()) + "; the trajectory up to t = " + num(last_t) + " s (" +
                 std::to_string(rows) + " rows) is in " + out.csv_path);
   }
-  if (drew) std::fprintf(stderr, "\r%70s\r", "");
+  clear_bar();
   if (file) {
     if (written_t != sum.t) write_row(sum.t, x);
     file->commit();

@@ -204,15 +204,12 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     // beta_dot(k) = nu(k) - G*(k) alpha+(k)
     S* bd = beta_dot.data() + B.v_offset;
     const int nv = B.hinge.nv();
+    // G(k) column by column (6 numbers each) and nu(k), from either storage.
+    const S* G = lean ? fd.G_packed.data() + 6 * B.v_offset : art.G[k - 1].data();
+    const S* nu = lean ? fd.nu_packed.data() + B.v_offset : fd.nu[k - 1].data();
     for (int i = 0; i < nv; ++i) {
-      if (lean) {
-        const Eigen::Map<const Vec6<S>> Gi(fd.G_packed.data() + 6 * (B.v_offset + i));
-        bd[i] = fd.nu_packed[B.v_offset + i] -
-                (Gi.template head<3>().dot(dw) + Gi.template tail<3>().dot(dv));
-      } else {
-        const auto Gi = art.G[k - 1].col(i);
-        bd[i] = fd.nu[k - 1][i] - (Gi.template head<3>().dot(dw) + Gi.template tail<3>().dot(dv));
-      }
+      const Eigen::Map<const Vec6<S>> Gi(G + 6 * i);
+      bd[i] = nu[i] - (Gi.template head<3>().dot(dw) + Gi.template tail<3>().dot(dv));
     }
     // alpha(k) = alpha+(k) + H*(k) beta_dot(k) + a(k)
     Vec3<S> hw, hv;
