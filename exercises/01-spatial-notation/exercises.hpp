@@ -9,7 +9,7 @@
 /// h(), J(), ...), soa::tilde() for 3-vectors and Eigen, but not the library function that
 /// the exercise asks you to reproduce (named in each statement): the test compares with it.
 ///
-/// Conventions (CONVENTIONS.md): spatial vectors angular first, \f$V = [\omega; v]\f$,
+/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular first, \f$V = [\omega; v]\f$,
 /// \f$f = [N; F]\f$; \f${}^x R_y\f$ maps y-coordinates to x-coordinates; a soa::Phi
 /// \f$\phi(x,y)\f$ holds \f$R = {}^x R_y\f$ and \f$l = {}^x l(x,y)\f$ (slide 43).
 #pragma once

@@ -2,7 +2,7 @@
 /// Lesson 2 exercises: the equations of motion of one rigid body about an arbitrary body
 /// point x, \f$f(x) = M(x)\,\alpha(x) + b(x)\f$, and the simulation of a free body.
 ///
-/// Conventions (CONVENTIONS.md): spatial vectors angular part first, \f$V = [\omega; v]\f$,
+/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular part first, \f$V = [\omega; v]\f$,
 /// \f$f = [N; F]\f$; \f$\tilde a\, b = a \times b\f$; \f$p(x) = l(x, C)\f$ is the vector from
 /// the body point x to the centre of mass C; \f$M(x)\f$ is stored as \f$(m,\ m p(x),\ J(x))\f$
 /// (soa::SpatialInertia: `M.mass()`, `M.p()`, `M.J()`, `M.J_cm()`, `M.matrix()`).

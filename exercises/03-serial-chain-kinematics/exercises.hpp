@@ -3,7 +3,7 @@
 /// the scatter recursion of the velocities, the operators \f$\mathcal E_\phi\f$ and
 /// \f$\phi\f$, Jacobians, and the Coriolis term \f$a(k)\f$.
 ///
-/// Conventions (CONVENTIONS.md): spatial vectors angular part first, \f$V = [\omega; v]\f$,
+/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular part first, \f$V = [\omega; v]\f$,
 /// \f$f = [N; F]\f$. Bodies are numbered from the tip: body 1 is the tip, body n is next to
 /// the base, and hinge k joins body k+1 (inboard) to body k. Lists of per-body quantities are
 /// indexed tip first: entry `k - 1` belongs to body k. \f$\phi(k+1,k)\f$ is stored as a

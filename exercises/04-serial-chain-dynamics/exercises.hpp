@@ -2,7 +2,7 @@
 /// Lesson 4 exercises: the equations of motion of a serial chain, by the Newton–Euler
 /// recursions and with spatial operators, \f$T = \mathcal M\dot\beta + \mathcal C\f$.
 ///
-/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base (the inertial
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base (the inertial
 /// frame is body n+1); hinge k joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$ and
 /// \f$T\f$ are stacked tip first (body k's entries start at `m.body(k).q_offset` and
 /// `m.body(k).v_offset`). Spatial vectors are angular part first; body k's quantities are at

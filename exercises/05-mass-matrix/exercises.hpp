@@ -1,7 +1,7 @@
 /// \file
 /// Lesson 5 exercises: the composite rigid body inertias and the mass matrix from them.
 ///
-/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k joins
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k joins
 /// body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's entries
 /// start at `m.body(k).q_offset` and `m.body(k).v_offset`). Body k's quantities are at its
 /// hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates. `phi[k-1]` is \f$\phi(k+1,k)\f$:

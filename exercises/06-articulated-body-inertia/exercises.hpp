@@ -2,7 +2,7 @@
 /// Lesson 6 exercises: the articulated body inertias of a serial chain by the Riccati
 /// recursion, and the projection \f$\bar\tau\f$.
 ///
-/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
 /// joins body k+1 to body k; \f$\theta\f$ is stacked tip first (body k's entries start at
 /// `m.body(k).q_offset`). Spatial vectors are angular part first; body k's quantities are at
 /// its hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$,

@@ -3,7 +3,7 @@
 /// factorization of the mass matrix and its inverse, the diagonal of \f$\mathcal M^{-1}\f$ in
 /// \f$O(N)\f$, and solving \f$\mathcal M y = b\f$ without forming \f$\mathcal M\f$.
 ///
-/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
 /// joins body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's
 /// entries start at `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial stacks have body
 /// k at rows 6(k-1)..6k-1. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ after soa::update_phi

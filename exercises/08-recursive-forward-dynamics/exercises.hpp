@@ -2,7 +2,7 @@
 /// Lesson 8 exercises: the sweeps of the O(N) articulated body forward dynamics, the
 /// inter-body forces, and a simulation step.
 ///
-/// Conventions (CONVENTIONS.md): body 1 is the tip, body n is next to the base; hinge k
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
 /// joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$, \f$T\f$ are stacked tip first (body
 /// k's entries start at `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial vectors are
 /// angular part first; body k's quantities are at its hinge frame \f$O_k\f$, in \f$O_k\f$

@@ -8,7 +8,7 @@
 /// the Newton–Euler factorization of the mass matrix. Every identity is computed on concrete
 /// numbers and checked; the program ends with the count of checks that passed.
 ///
-/// Numbering (CONVENTIONS.md): **body 1 is the tip, body n is next to the base**, the
+/// Numbering (\ref conventions): **body 1 is the tip, body n is next to the base**, the
 /// inertial frame is body n+1, hinge k joins body k+1 (inboard) to body k, and \f$\theta\f$,
 /// \f$\beta\f$ and \f$T\f$ are stacked in the same order, tip first.
 ///

@@ -9,7 +9,7 @@
 /// computed on concrete numbers and checked; the program ends with the count of checks that
 /// passed.
 ///
-/// Numbering (CONVENTIONS.md): **body 1 is the tip, body n is next to the base**, hinge k
+/// Numbering (\ref conventions): **body 1 is the tip, body n is next to the base**, hinge k
 /// joins body k+1 to body k, and \f$\theta\f$, \f$\beta\f$, \f$T\f$ are stacked tip first.
 ///
 /// Learning goals. After this lesson you can

@@ -1,6 +1,6 @@
 /// \file
 /// Property tests: the O(N) recursions of lessons 3-4 against the operator forms, built as
-/// dense matrices by OperatorsT (CONVENTIONS.md, "Serial chains"), on random chains of up
+/// dense matrices by OperatorsT (the notes' page "Conventions", "Serial chains"), on random chains of up
 /// to 12 bodies of every kind (all hinge types in one chain, or all of one type):
 ///   V = phi* H* beta,  alpha = phi* (H* beta_dot + a)  (without and with gravity),
 ///   f = phi (M alpha + b),  T = H f  (with gravity and external forces);

@@ -23,7 +23,7 @@ struct MomentumKind {
   static constexpr bool is_motion = false;
 };
 
-/// A spatial (6D) vector with the angular part first (CONVENTIONS.md): \f$V = [\omega; v]\f$
+/// A spatial (6D) vector with the angular part first (\ref conventions): \f$V = [\omega; v]\f$
 /// for a velocity, \f$f = [N; F]\f$ for a force (moment first).
 ///
 /// The kind is part of the type: a force cannot be added to a velocity, and the pairing of

@@ -17,7 +17,7 @@
 
 namespace soa {
 
-/// The operators of the innovations factorization at one state (CONVENTIONS.md, lesson 7).
+/// The operators of the innovations factorization at one state (\ref conventions, lesson 7).
 /// Stacked tip first like OperatorsT: block k (1-based) of a spatial stack is rows
 /// 6(k-1)..6k-1, of a hinge stack rows `v_offset(k)`..`v_offset(k) + n_k - 1`.
 template <class S>

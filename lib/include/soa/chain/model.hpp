@@ -12,7 +12,7 @@
 
 namespace soa {
 
-/// One body k of the chain with its inboard hinge k (CONVENTIONS.md numbering).
+/// One body k of the chain with its inboard hinge k (numbering of \ref conventions).
 template <class S>
 struct BodyT {
   std::string name;

@@ -12,7 +12,7 @@
 
 namespace soa {
 
-/// The operators of a chain at one state (CONVENTIONS.md, lessons 3-4).
+/// The operators of a chain at one state (\ref conventions, lessons 3-4).
 template <class S>
 struct OperatorsT {
   MatX<S> E_phi;  ///< \f$\mathcal{E}_\phi\f$: \f$\phi(k+1,k)\f$ at block (k+1, k)
