@@ -26,4 +26,16 @@ Mat6 transform_symmetric(const Phi& phi, const Mat6& P) {
   throw exercise::NotDone("6.4 transform_symmetric");
 }
 
+std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x,
+                                             const VecX<double>& T) {
+  (void)m, (void)x, (void)T;
+  throw exercise::NotDone("6.5 articulated_forces");
+}
+
+std::vector<Vec6<double>> composite_bias(const Model& m, const State& x,
+                                         const VecX<double>& beta_dot) {
+  (void)m, (void)x, (void)beta_dot;
+  throw exercise::NotDone("6.6 composite_bias");
+}
+
 }  // namespace soa::ex06

@@ -17,6 +17,8 @@
 /// in its statement); the other library functions are yours to use.
 #pragma once
 
+#include <vector>
+
 #include "soa/chain.hpp"
 #include "soa/soa.hpp"
 
@@ -67,5 +69,30 @@ VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 ///     & C' \end{pmatrix} . \f]
 /// Do not call `phi.matrix()` or soa::transform_symmetric.
 Mat6 transform_symmetric(const Phi& phi, const Mat6& P);
+
+/// **Exercise 6.5: the inter-body forces from the articulated sweeps.**
+/// For the chain \p m (gravity as \p m says) at the state \p x with hinge forces \p T and no
+/// external forces, run soa::forward_dynamics (allowed) and return, at entry k−1 (size n),
+/// the force across hinge k from the inter-body forces identity (lesson 6, sections 2 and 8)
+/// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \f]
+/// with \f$P^+(k)\f$, \f$\alpha^+(k)\f$, \f$z^+(k)\f$ as the forward dynamics leaves them in
+/// soa::ForwardDynamics (`fd.art.P_plus`, `fd.alpha_plus`, `fd.z_plus`). The test compares
+/// them with the Newton–Euler \f$f(k)\f$ at the same \f$\dot\beta\f$ and with \f$R\alpha^+ +
+/// y\f$ of the composite inertias.
+std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x, const VecX<double>& T);
+
+/// **Exercise 6.6: the composite-body bias \f$y\f$.**
+/// For the chain \p m (gravity as \p m says) at the state \p x with hinge accelerations
+/// \p beta_dot and no external forces, return \f$y(k)\f$ at entry k−1 (size n) such that
+/// \f$f(k) = R(k)\,\alpha^+(k) + y(k)\f$ (lesson 6, section 8):
+/// \f[ y(k) = \phi(k,k-1)\,y(k-1) + R(k)\bigl(\alpha(k) - \alpha^+(k)\bigr) + b(k), \quad
+///     y(0) = 0, \quad \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1),\ \alpha(n+1) = [0; -g], \f]
+/// with \f$b(k)\f$ the gyroscopic force (soa::gyroscopic_force of \f$M(k)\f$ and \f$V(k)\f$).
+/// \f$\phi\f$, \f$V(k)\f$ and \f$\alpha(k)\f$ from soa::inverse_dynamics (`ws.phi`, `ws.V`,
+/// `ws.alpha`), \f$R(k)\f$ from soa::composite_inertias and the base acceleration from
+/// soa::gravity_base_acceleration are allowed; do not call soa::composite_bias,
+/// soa::alpha_plus or soa::inverse_dynamics_composite.
+std::vector<Vec6<double>> composite_bias(const Model& m, const State& x,
+                                         const VecX<double>& beta_dot);
 
 }  // namespace soa::ex06

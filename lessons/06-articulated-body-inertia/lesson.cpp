@@ -2,10 +2,12 @@
 ///
 /// Topic 6 of the course (slide 1; Jain 2011, chapter 6): the articulated body inertia
 /// \f$P(k)\f$, the inertia that the part of the chain outboard of hinge k presents at
-/// \f$O_k\f$ when every hinge outboard of body k is free; its Riccati recursion, the gain
-/// \f$G(k)\f$ and the projection \f$\bar\tau(k)\f$; and the operators
-/// \f$K = \mathcal E_\phi G\f$, \f$\mathcal E_\psi = \mathcal E_\phi\bar\tau\f$ and
-/// \f$\psi = (I - \mathcal E_\psi)^{-1}\f$ that lessons 7 and 8 build on. Every identity is
+/// \f$O_k\f$ when every hinge outboard of body k is free; its Riccati recursion, derived
+/// from the equations of motion, the gain \f$G(k)\f$ and the projection \f$\bar\tau(k)\f$;
+/// the operators \f$K = \mathcal E_\phi G\f$, \f$\mathcal E_\psi = \mathcal E_\phi\bar\tau\f$
+/// and \f$\psi = (I - \mathcal E_\psi)^{-1}\f$ that lessons 7 and 8 build on; and the
+/// alternative decompositions of the inter-body forces, through the composite and the
+/// articulated inertias (section 8). Every identity is
 /// computed on concrete numbers and checked; the program ends with the count of checks that
 /// passed.
 ///
@@ -15,11 +17,14 @@
 /// Learning goals. After this lesson you can
 /// - say what \f$P(k)\f$ is (a Schur complement of the composite inertia \f$R(k)\f$ of
 ///   lesson 5) and why \f$0 \le P(k) \le R(k)\f$;
-/// - run the Riccati recursion for \f$P\f$, \f$D\f$, \f$G\f$, \f$\bar\tau\f$, \f$P^+\f$ tip to
-///   base, and check its properties;
+/// - derive the Riccati recursion for \f$P\f$, \f$D\f$, \f$G\f$, \f$\bar\tau\f$, \f$P^+\f$ tip
+///   to base from \f$f = P(\alpha - a) + z\f$, run it, and check its properties;
 /// - write it with the operators \f$\mathcal E_\phi\f$, \f$\mathcal E_\psi\f$, \f$\psi\f$;
 /// - recognise a singular \f$D(k)\f$ (a massless tip, a mass on its own hinge axis) and read
 ///   the library's diagnostic.
+/// - split the inter-body forces as \f$f = R\alpha^+ + y\f$ (hinges locked) and
+///   \f$f = P^+\alpha^+ + z^+ = P(\alpha - a) + z\f$ (hinges free), and derive the operator
+///   identities behind them.
 ///
 /// Run it as `lesson06 OUTDIR`: it prints each check and writes \f$D(k)\f$ and the sizes of
 /// \f$P(k)\f$ and \f$R(k)\f$ along a 50-link chain (`l6_chain50.csv`) and their figures
@@ -40,6 +45,7 @@
 #include "extreme_cases.hpp"
 #include "plot.hpp"
 #include "soa/chain.hpp"
+#include "soa/chain/force_decompositions.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
 
@@ -55,6 +61,7 @@ using soa::Workspace;
 using Vec3 = soa::Vec3<double>;
 using Mat3 = soa::Mat3<double>;
 using Mat6 = soa::Mat6<double>;
+using Vec6 = soa::Vec6<double>;
 using VecX = soa::VecX<double>;
 using MatX = soa::MatX<double>;
 
@@ -185,18 +192,53 @@ int main(int argc, char** argv) {
 
   /// ## 2. The Riccati recursion
   ///
-  /// The Schur complement costs O(k^3) per body. Going tip to base instead, body k sees body
-  /// k−1 through the free hinge k−1: of body k−1's articulated inertia only the part hinge
-  /// k−1 cannot give way to, \f$P^+(k-1)\f$, is passed on, moved to \f$O_k\f$ by
-  /// \f$\phi(k,k-1)\f$ (Jain 2011, chapter 6):
-  /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \qquad P^+(0) = 0, \f]
+  /// The Schur complement costs O(k^3) per body. Going tip to base instead gives P(k) for all
+  /// k in O(n), and the derivation (Jain 2011, chapter 6) holds in any state: velocities,
+  /// hinge forces \f$T\f$ on every hinge, gravity and external forces. The equations of
+  /// lesson 4, with \f$f(0) = 0\f$ and \f$\alpha(n+1) = [0; -g]\f$:
+  /// \f[ f(k) = \phi(k,k-1)\,f(k-1) + M(k)\,\alpha(k) + b(k), \qquad
+  ///     \alpha(k) = \alpha^+(k) + H^*(k)\,\dot\beta(k) + a(k), \qquad T(k) = H(k)\,f(k), \f]
+  /// with \f$\alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1)\f$, the acceleration body k would have
+  /// were hinge k locked, and \f$b(k)\f$ the gyroscopic force less the external one. Claim,
+  /// by induction from the tip:
+  /// \f[ f(k) = P(k)\,\bigl(\alpha(k) - a(k)\bigr) + z(k), \f]
+  /// with \f$P(k)\f$ depending on \f$\theta\f$ only and \f$z(k)\f$ not on \f$\dot\beta\f$.
+  ///
+  /// *At the tip*, \f$f(1) = M(1)\alpha(1) + b(1)\f$: \f$P(1) = M(1)\f$,
+  /// \f$z(1) = P(1)a(1) + b(1)\f$.
+  ///
+  /// *Across hinge k*: \f$\alpha(k) - a(k) = \alpha^+(k) + H^*\dot\beta(k)\f$, so
+  /// \f$T(k) = Hf(k) = HP\alpha^+ + D\dot\beta(k) + Hz(k)\f$ with \f$D = HPH^*\f$, and
+  /// \f[ \dot\beta(k) = D^{-1}(k)\bigl(T(k) - H(k)z(k)\bigr) - D^{-1}(k)H(k)P(k)\,\alpha^+(k)
+  ///     = \nu(k) - G^*(k)\,\alpha^+(k), \f]
+  /// with the *innovation* \f$\epsilon(k) = T(k) - H(k)z(k)\f$, \f$\nu(k) = D^{-1}(k)
+  /// \epsilon(k)\f$ and the gain \f$G(k) = P(k)H^*(k)D^{-1}(k)\f$ (\f$G^* = D^{-1}HP\f$, \f$P\f$
+  /// symmetric). Putting \f$\dot\beta(k)\f$ back, \f$f = P\alpha^+ + PH^*(\nu - G^*\alpha^+) + z
+  /// = (P - GDG^*)\alpha^+ + z + G\epsilon\f$ (\f$PH^* = GD\f$): the **inter-body forces
+  /// identity**
+  /// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \qquad P^+(k) = P(k) - G(k)D(k)G^*(k), \qquad
+  ///     z^+(k) = z(k) + G(k)\,\epsilon(k). \f]
+  ///
+  /// *From body k to body k+1*: \f$f(k+1) = \phi(k+1,k)\bigl(P^+(k)\phi^*(k+1,k)\alpha(k+1) +
+  /// z^+(k)\bigr) + M(k+1)\alpha(k+1) + b(k+1)\f$; writing \f$\alpha(k+1) = (\alpha(k+1) -
+  /// a(k+1)) + a(k+1)\f$ this is the claim at k+1 with
+  /// \f[ P(k+1) = \phi(k+1,k)\,P^+(k)\,\phi^*(k+1,k) + M(k+1), \qquad
+  ///     z(k+1) = \phi(k+1,k)\,z^+(k) + P(k+1)\,a(k+1) + b(k+1). \f]
+  ///
+  /// The recursion for \f$P\f$ involves neither \f$\beta\f$ nor \f$T\f$ nor \f$g\f$. At rest,
+  /// without gravity or external forces and with \f$T(j) = 0\f$ for \f$j < k\f$, every
+  /// \f$z(j)\f$, \f$\epsilon(j)\f$, \f$z^+(j)\f$ for \f$j < k\f$ vanishes and \f$z(k) = 0\f$, so
+  /// \f$f(k) = P(k)\alpha(k)\f$: the \f$P(k)\f$ of section 1. Collected, tip to base from
+  /// \f$P^+(0) = 0\f$:
+  /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \f]
   /// \f[ D(k) = H(k)P(k)H^*(k), \quad G(k) = P(k)H^*(k)D^{-1}(k), \quad
   ///     \bar\tau(k) = I - G(k)H(k), \quad P^+(k) = \bar\tau(k)P(k) = P(k) - G(k)D(k)G^*(k). \f]
   /// This is a discrete Riccati equation; with \f$\bar\tau = I\f$ (no free hinges) it is the
   /// Lyapunov recursion of \f$R\f$ (lesson 5). \f$D(k)\f$ is the inertia hinge k feels
   /// along its own free directions. \f$\phi P\phi^*\f$ for a symmetric \f$P\f$ is computed
   /// from \f$R\f$ and \f$\tilde\ell\f$ without the 6x6 \f$\phi\f$ (soa::transform_symmetric).
-  /// API: soa::articulated_inertias().
+  /// API: soa::articulated_inertias(); the \f$z\f$, \f$\epsilon\f$, \f$\nu\f$, \f$z^+\f$,
+  /// \f$\alpha^+\f$ sweeps are the forward dynamics of lesson 8, soa::forward_dynamics().
   soa::Articulated art(m);
   soa::articulated_inertias(m, x, ws, art);
   double def_err = 0, def_scale = 1;
@@ -220,6 +262,54 @@ int main(int argc, char** argv) {
   }
   checks.check("Riccati P(k) == Schur complement R - X M'^-1 X* (the definition)", def_err,
                64 * kEps * def_scale);
+
+  // The derivation at a moving state: the same chain and theta under gravity, with rates,
+  // hinge forces and external forces; beta_dot, z, z+, alpha+ from the sweeps
+  // (soa::forward_dynamics), f(k), alpha(k), a(k) from Newton-Euler (lesson 4) at beta_dot.
+  Model mg = small_chain();
+  mg.gravity = Vec3(0, 0, -9.81);
+  State xm = x;
+  VecX T(m.nv());
+  for (int i = 0; i < m.nv(); ++i) {
+    xm.beta[i] = 0.5 - 0.3 * i;
+    T[i] = 1.0 - 0.4 * i;
+  }
+  soa::ExternalForces<double> f_ext;
+  for (int k = 1; k <= n; ++k)
+    f_ext.push_back(soa::Force(Vec3(0.1 * k, -0.2, 0.05), Vec3(0.3, 0.1 * k, -0.2)));
+  Workspace ws_fd(mg), ws_ne(mg);
+  soa::ForwardDynamics fd(mg);
+  VecX bd(m.nv()), T_back(m.nv());
+  soa::forward_dynamics(mg, xm, T, f_ext, ws_fd, fd, bd);
+  soa::inverse_dynamics(mg, xm, bd, f_ext, ws_ne, T_back);
+  double ansatz = 0, identity = 0, z_rec = 0, f_scale = 1e-300, kappa = 1;
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6& Pk = fd.art.P[j];
+    const Vec6 f = ws_ne.f[j].vector();
+    const Vec6 alpha_less_a = ws_ne.alpha[j].vector() - ws_ne.a[j].vector();
+    const Vec6 alpha_p = fd.alpha_plus[j].vector();
+    Vec6 z = Pk * ws_fd.a[j].vector() + ws_fd.b[j].vector();
+    if (k > 1) z += ws_fd.phi[j - 1].apply(fd.z_plus[j - 1]).vector();
+    ansatz = std::max(ansatz, (Pk * alpha_less_a + fd.z[j].vector() - f).norm());
+    identity = std::max(identity, (fd.art.P_plus[j] * alpha_p + fd.z_plus[j].vector() - f).norm());
+    z_rec = std::max(z_rec, (z - fd.z[j].vector()).norm());
+    f_scale = std::max({f_scale, f.norm(), Pk.norm() * alpha_less_a.norm(), z.norm(),
+                        fd.art.P_plus[j].norm() * alpha_p.norm(), fd.z_plus[j].vector().norm()});
+    kappa = std::max(kappa, Pk.norm() * MatX(fd.art.D_inv[j]).norm());
+  }
+  std::printf("  moving, under gravity: beta_dot = nu - G* alpha+ =");
+  for (int i = 0; i < m.nv(); ++i) std::printf(" %.5f", bd[i]);
+  std::printf("\n");
+  const double tol_f = 16 * m.nv() * kEps * kappa * f_scale;
+  checks.check("z(k) = phi(k,k-1) z+(k-1) + P(k) a(k) + b(k), z(1) = M(1) a(1) + b(1)", z_rec,
+               tol_f);
+  checks.check("the claim: f(k) = P(k) (alpha(k) - a(k)) + z(k) == Newton-Euler f(k)", ansatz,
+               tol_f);
+  checks.check("inter-body forces identity: f(k) = P+(k) alpha+(k) + z+(k) == Newton-Euler",
+               identity, tol_f);
+  checks.check("beta_dot = nu - G* alpha+ solves T = H f: ID(beta_dot) = T", (T_back - T).norm(),
+               tol_f);
 
   /// ## 3. Properties
   ///
@@ -539,6 +629,130 @@ int main(int argc, char** argv) {
   /// confirms what the ratio predicts: \f$D(k)\f$ keeps about \f$\log_{10}(\text{ratio} /
   /// \varepsilon)\f$ digits, 7 or more here. The massless tip is diagnosed at body 1 whatever
   /// n: there the method stops because the problem has no answer.
+
+  /// ## 8. Alternative force decompositions
+  ///
+  /// The inter-body force \f$f(k)\f$ split into an inertia times an acceleration plus a bias
+  /// (slide 1, topic 6; Jain 2011, chapter 6), once with the hinges k−1, ..., 1 locked (the
+  /// composite body of lesson 5) and once with them free (section 2). Stacked (lesson 4),
+  /// \f$\alpha = \phi^*(H^*\dot\beta + a + w)\f$ and \f$f = \phi(M\alpha + b)\f$, where
+  /// \f$w\f$ holds the base acceleration \f$\alpha^+(n) = \phi^*(n+1,n)\alpha(n+1)\f$ in its
+  /// block n and zero elsewhere. Write \f$\delta = \alpha - \alpha^+ = H^*\dot\beta + a\f$, so
+  /// \f$\alpha^+ = \tilde\phi^*(\delta + w) + w\f$, \f$\tilde\phi = \phi - I = \phi\mathcal
+  /// E_\phi = \mathcal E_\phi\phi\f$ (strictly lower: \f$\tilde\phi X w = 0\f$ for block
+  /// diagonal \f$X\f$, nothing is inboard of body n).
+  ///
+  /// **Hinges locked: the composite body.** From \f$R = \mathcal E_\phi R\mathcal E_\phi^* +
+  /// M\f$ (lesson 5), \f$\phi M\phi^* = \phi R\phi^* - \tilde\phi R\tilde\phi^*\f$, that is
+  /// \f[ \phi M\phi^* = R + \tilde\phi R + R\tilde\phi^* . \f]
+  /// Then \f$f = \phi M\phi^*(\delta + w) + \phi b = R\tilde\phi^*(\delta + w) + \phi R(\delta +
+  /// w) + \phi b = R\alpha^+ + \phi(R\delta + b) + \tilde\phi R w\f$, and the last term is zero:
+  /// \f[ f = R\,\alpha^+ + y, \qquad y = \phi\,(R\,\delta + b), \qquad
+  ///     y(k) = \phi(k,k-1)\,y(k-1) + R(k)\bigl(\alpha(k) - \alpha^+(k)\bigr) + b(k). \f]
+  /// \f$R(k)\f$ multiplies \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$, not \f$\alpha(k)\f$:
+  /// the acceleration of body k with hinge k locked as well, all of bodies 1..k riding on body
+  /// k+1. \f$y(k)\f$ collects, for every body \f$j \le k\f$, its bias \f$b(j)\f$ and the force
+  /// \f$R(j)\delta(j)\f$ the composite body 1..j needs to follow the relative acceleration
+  /// \f$\delta(j) = H^*(j)\dot\beta(j) + a(j)\f$ of hinge j, moved to \f$O_k\f$ (API:
+  /// soa::alpha_plus(), soa::composite_bias(); soa::inverse_dynamics_composite() of lesson 5
+  /// computes the same \f$y\f$ on the fly). Taking \f$R(k)H^*(k)\dot\beta(k)\f$ out of
+  /// \f$y(k)\f$ gives the analogue of \f$P(\alpha - a) + z\f$:
+  /// \f[ f(k) = R(k)\bigl(\alpha(k) - a(k)\bigr) + y^-(k), \qquad y^-(k) = \phi(k,k-1)\,y(k-1) +
+  ///     R(k)\,a(k) + b(k). \f]
+  ///
+  /// **Hinges free: the articulated body.** From the Riccati equation \f$P = \mathcal E_\phi
+  /// P^+\mathcal E_\phi^* + M\f$ with \f$P^+ = P - GDG^*\f$ and \f$K = \mathcal E_\phi G\f$,
+  /// \f$M = P - \mathcal E_\phi P\mathcal E_\phi^* + KDK^*\f$, and in the same way
+  /// \f[ \phi M\phi^* = P + \tilde\phi P + P\tilde\phi^* + \phi K D K^*\phi^* . \f]
+  /// Then \f$f = P\alpha^+ + \phi(P\delta + b) + \phi KDK^*\alpha\f$. Here \f$\phi K = \tilde\phi
+  /// G\f$ and \f$K^*\alpha = G^*\mathcal E_\phi^*\alpha\f$ equals \f$G^*\alpha^+\f$ but in block
+  /// n, which \f$\tilde\phi\f$ drops: \f$\phi KDK^*\alpha = \tilde\phi\, GDG^*\alpha^+\f$. With
+  /// \f$P\delta + GDG^*\alpha^+ = Pa + GD(\dot\beta + G^*\alpha^+) = Pa + G\epsilon\f$
+  /// (\f$PH^* = GD\f$, \f$\dot\beta = \nu - G^*\alpha^+\f$, section 2):
+  /// \f[ f = P^+\alpha^+ + z^+ = P(\alpha - a) + z, \qquad z^+ = \phi\,(Pa + b + G\epsilon),
+  ///     \qquad z = z^+ - G\epsilon , \f]
+  /// the operator form of the recursions of section 2. Side by side: the same \f$\alpha^+\f$,
+  /// and \f$y - z^+ = (P^+ - R)\,\alpha^+\f$; the free hinges take inertia out of the first
+  /// term (\f$P^+ \le P \le R\f$) and put the hinge forces \f$T\f$ into the bias.
+  ///
+  /// **The articulated analogue in full.** From \f$P = \mathcal E_\psi P\mathcal E_\psi^* +
+  /// M\f$ (section 4) and \f$\tilde\psi = \psi - I = \psi\mathcal E_\psi\f$, the same two
+  /// lines give
+  /// \f[ \psi M\psi^* = P + \tilde\psi P + P\tilde\psi^*, \qquad (\psi M\psi^*)(i,j) =
+  ///     \psi(i,j)\,P(j),\ i > j, \f]
+  /// as \f$(\phi M\phi^*)(i,j) = \phi(i,j)R(j)\f$: section 4 had only its diagonal. The
+  /// correction \f$\phi KDK^*\phi^*\f$ of the \f$\phi\f$ form is absorbed by \f$\psi\f$, which
+  /// carries forces across the free hinges. Checked on the dense operators and, for the
+  /// forces, against Newton–Euler at the moving state of section 2:
+  const MatX R_op = soa::composite_inertia_operator(m, ws);
+  const MatX I_N = MatX::Identity(N, N);
+  const MatX phi_t = op.phi - I_N, psi_t = psi - I_N;
+  const MatX phiMphi = op.phi * op.M * op.phi.transpose();
+  const MatX free_part = op.phi * K * D * K.transpose() * op.phi.transpose();
+  const double op_scale = std::max({1.0, phiMphi.norm(), free_part.norm(), psiMpsi.norm()});
+  double psi_blocks = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < a; ++b)
+      psi_blocks = std::max(psi_blocks, (psiMpsi.block<6, 6>(6 * a, 6 * b) -
+                                         psi.block<6, 6>(6 * a, 6 * b) * art.P[std::size_t(b)])
+                                            .norm());
+  checks.check("phi M phi* = R + phi~ R + R phi~*",
+               (phiMphi - (R_op + phi_t * R_op + R_op * phi_t.transpose())).norm(),
+               16 * N * kEps * op_scale);
+  checks.check("phi M phi* = P + phi~ P + P phi~* + phi K D K* phi*",
+               (phiMphi - (P + phi_t * P + P * phi_t.transpose() + free_part)).norm(),
+               16 * N * kEps * op_scale);
+  checks.check("psi M psi* = P + psi~ P + P psi~*",
+               (psiMpsi - (P + psi_t * P + P * psi_t.transpose())).norm(),
+               16 * N * kEps * op_scale);
+  checks.check("(psi M psi*)(i,j) = psi(i,j) P(j), i > j", psi_blocks, 16 * N * kEps * op_scale);
+
+  // The forces at the moving state of section 2 (mg, xm, T, f_ext; Newton-Euler in ws_ne).
+  std::vector<soa::Acceleration> alpha_p(static_cast<std::size_t>(n));
+  std::vector<soa::Force> y(static_cast<std::size_t>(n));
+  soa::alpha_plus(mg, ws_ne, alpha_p);
+  soa::composite_bias(mg, ws_ne, art.R, alpha_p, f_ext, y);
+  VecX delta(N), b_stack(N), a_stack(N), Geps(N), y_stack(N), zp_stack(N);
+  double comp = 0, comp_minus = 0, alpha_p_err = 0, side = 0, fs = 1e-300;
+  std::printf("  k  |f(k)|    |R a+|    |y|       |P+ a+|   |z+|\n");
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6 R = art.R[j].matrix();
+    const Vec6 f = ws_ne.f[j].vector(), ap = alpha_p[j].vector();
+    const Vec6 a_k = ws_ne.a[j].vector(), alpha_k = ws_ne.alpha[j].vector();
+    Vec6 y_minus = R * a_k + ws_fd.b[j].vector();
+    if (k > 1) y_minus += ws_ne.phi[j - 1].apply(y[j - 1]).vector();
+    comp = std::max(comp, (R * ap + y[j].vector() - f).norm());
+    comp_minus = std::max(comp_minus, (R * (alpha_k - a_k) + y_minus - f).norm());
+    alpha_p_err = std::max(alpha_p_err, (ap - fd.alpha_plus[j].vector()).norm());
+    side = std::max(side, (y[j].vector() - fd.z_plus[j].vector() -
+                           (fd.art.P_plus[j] - R) * fd.alpha_plus[j].vector())
+                              .norm());
+    fs = std::max(
+        {fs, f.norm(), R.norm() * ap.norm(), y[j].vector().norm(), R.norm() * alpha_k.norm()});
+    delta.segment<6>(6 * int(j)) = alpha_k - ap;
+    b_stack.segment<6>(6 * int(j)) = ws_fd.b[j].vector();
+    a_stack.segment<6>(6 * int(j)) = ws_fd.a[j].vector();
+    Geps.segment<6>(6 * int(j)) = fd.art.G[j] * (fd.art.D[j] * fd.nu[j]);
+    y_stack.segment<6>(6 * int(j)) = y[j].vector();
+    zp_stack.segment<6>(6 * int(j)) = fd.z_plus[j].vector();
+    std::printf("  %d  %8.4f  %8.4f  %8.4f  %8.4f  %8.4f\n", k, f.norm(), (R * ap).norm(),
+                y[j].vector().norm(), (fd.art.P_plus[j] * fd.alpha_plus[j].vector()).norm(),
+                fd.z_plus[j].vector().norm());
+  }
+  fs = std::max(fs, f_scale);
+  // The composite split only adds and transforms; the articulated one carries G (kappa).
+  const double tol_comp = 16 * N * kEps * fs, tol_fs = 16 * N * kEps * kappa * fs;
+  checks.check("alpha+(k) = phi*(k+1,k) alpha(k+1) (soa::alpha_plus) == the sweeps' alpha+",
+               alpha_p_err, tol_comp);
+  checks.check("composite: f(k) = R(k) alpha+(k) + y(k) == Newton-Euler f(k)", comp, tol_comp);
+  checks.check("composite: f(k) = R(k) (alpha(k) - a(k)) + y-(k) == Newton-Euler f(k)", comp_minus,
+               tol_comp);
+  checks.check("operator form y = phi (R delta + b), delta = alpha - alpha+",
+               (y_stack - op.phi * (R_op * delta + b_stack)).norm(), tol_comp);
+  checks.check("operator form z+ = phi (P a + b + G epsilon)",
+               (zp_stack - op.phi * (P * a_stack + b_stack + Geps)).norm(), tol_fs);
+  checks.check("side by side: y(k) - z+(k) = (P+(k) - R(k)) alpha+(k)", side, tol_fs);
 
   return checks.finish();
 }

@@ -15,8 +15,9 @@
 /// Learning goals. After this lesson you can
 /// - derive the three sweeps of the articulated body algorithm — base to tip \f$V\f$, \f$a\f$,
 ///   \f$b\f$; tip to base \f$z, \epsilon, \nu, z^+\f$; base to tip
-///   \f$\alpha^+, \dot\beta, \alpha\f$ — from the ansatz \f$f = P\alpha + \dots\f$ (the
-///   Riccati sweep), and again from the innovations factorization of \f$\mathcal M\f$;
+///   \f$\alpha^+, \dot\beta, \alpha\f$ — from \f$f = P(\alpha - a) + z\f$ (the Riccati
+///   sweep, derived in lesson 6), and again from the innovations factorization of
+///   \f$\mathcal M\f$;
 /// - put gravity in as the base acceleration, external forces into \f$b\f$ and joint springs
 ///   and dampers into \f$T\f$;
 /// - recover the inter-body forces \f$f(k) = P^+(k)\alpha^+(k) + z^+(k)\f$;
@@ -399,36 +400,18 @@ int main(int argc, char** argv) {
 
   /// ## 2. The Riccati sweep
   ///
-  /// Lesson 6 answered a simpler question: at rest, with the hinges outboard of body k free
-  /// and unforced, the force at \f$O_k\f$ that gives body k the acceleration \f$\alpha(k)\f$ is
-  /// \f$P(k)\alpha(k)\f$. With velocities, forces \f$T\f$ on the outboard hinges, gravity and
-  /// external forces it gains a part that does not depend on \f$\alpha(k)\f$. Make the
-  /// ansatz (Jain 2011)
-  /// \f[ f(k) = P(k)\,\bigl(\alpha(k) - a(k)\bigr) + z(k) \f]
-  /// and prove it tip to base, with the equations of lesson 4:
-  /// \f$f(k) = \phi(k,k-1)f(k-1) + M(k)\alpha(k) + b(k)\f$,
-  /// \f$\alpha(k) = \alpha^+(k) + H^*(k)\dot\beta(k) + a(k)\f$ with
-  /// \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$, and \f$T(k) = H(k)f(k)\f$.
-  ///
-  /// *At the tip*, \f$f(1) = M(1)\alpha(1) + b(1)\f$: the ansatz holds with \f$P(1) = M(1)\f$
-  /// and \f$z(1) = P(1)a(1) + b(1)\f$.
-  ///
-  /// *Across hinge k*: with \f$\alpha(k) - a(k) = \alpha^+(k) + H^*\dot\beta(k)\f$, the hinge
-  /// force is \f$T(k) = H f(k) = HP\alpha^+ + D\dot\beta(k) + Hz(k)\f$ (\f$D = HPH^*\f$), so
-  /// \f[ \dot\beta(k) = D^{-1}(k)\bigl(T(k) - H(k)z(k)\bigr) - D^{-1}(k)H(k)P(k)\,\alpha^+(k)
-  ///     = \nu(k) - G^*(k)\,\alpha^+(k), \f]
-  /// with the *innovation* \f$\epsilon(k) = T(k) - H(k)z(k)\f$, \f$\nu(k) = D^{-1}(k)
-  /// \epsilon(k)\f$ and \f$G^* = D^{-1}HP\f$ (lesson 6). Putting \f$\dot\beta(k)\f$ back,
-  /// \f$f(k) = P\alpha^+ + PH^*(\nu - G^*\alpha^+) + z = (P - GDG^*)\alpha^+ + z + G\epsilon\f$:
-  /// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \qquad z^+(k) = z(k) + G(k)\,\epsilon(k). \f]
-  /// This is the **inter-body forces identity**: what crosses hinge k is the articulated
-  /// inertia that hinge k cannot give way to, \f$P^+\f$, times the acceleration of the inboard
-  /// side, plus a bias.
-  ///
-  /// *From body k to body k+1*: \f$f(k+1) = \phi(k+1,k)\bigl(P^+(k)\phi^*(k+1,k)\alpha(k+1) +
-  /// z^+(k)\bigr) + M(k+1)\alpha(k+1) + b(k+1)\f$, and with \f$P(k+1) = \phi P^+\phi^* + M\f$
-  /// (the Riccati recursion of lesson 6) this is the ansatz at k+1 with
-  /// \f[ z(k+1) = \phi(k+1,k)\,z^+(k) + P(k+1)\,a(k+1) + b(k+1). \f]
+  /// Lesson 6 (\ref lesson06_riccati, section 2 of \ref lesson06_program) derived the
+  /// Riccati recursion from the equations of lesson 4 in any state, with velocities, hinge
+  /// forces, gravity and external forces: by induction from the tip, the force across hinge k
+  /// is
+  /// \f[ f(k) = P(k)\,\bigl(\alpha(k) - a(k)\bigr) + z(k) = P^+(k)\,\alpha^+(k) + z^+(k),
+  ///     \qquad \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1), \f]
+  /// where \f$T(k) = H(k)f(k)\f$ gives the hinge acceleration
+  /// \f$\dot\beta(k) = \nu(k) - G^*(k)\,\alpha^+(k)\f$ with the *innovation*
+  /// \f$\epsilon(k) = T(k) - H(k)z(k)\f$ and \f$\nu(k) = D^{-1}(k)\epsilon(k)\f$, and
+  /// \f$z^+(k) = z(k) + G(k)\epsilon(k)\f$, \f$z(k+1) = \phi(k+1,k)z^+(k) + P(k+1)a(k+1) +
+  /// b(k+1)\f$ carry the bias inboard while \f$P(k+1) = \phi P^+(k)\phi^* + M(k+1)\f$ carries
+  /// the inertia. The second form is the **inter-body forces identity** (section 3).
   ///
   /// So the forward dynamics is three O(N) sweeps:
   /// 1. base to tip, the velocities: \f$\phi(k+1,k)\f$, \f$V(k)\f$, \f$a(k)\f$, \f$b(k)\f$
@@ -476,8 +459,8 @@ int main(int argc, char** argv) {
 
   /// ## 3. The inter-body forces
   ///
-  /// Section 2 found \f$f(k) = P^+(k)\alpha^+(k) + z^+(k)\f$ along the way: the forward
-  /// dynamics gives the forces in the hinges for free. Newton–Euler inverse dynamics (lesson
+  /// Section 2 (from lesson 6) has \f$f(k) = P^+(k)\alpha^+(k) + z^+(k)\f$ along the way:
+  /// the forward dynamics gives the forces in the hinges for free. Newton–Euler inverse dynamics (lesson
   /// 4) at the computed \f$\dot\beta\f$ computes the same \f$f(k)\f$ from
   /// \f$f(k) = \phi(k,k-1)f(k-1) + M(k)\alpha(k) + b(k)\f$, and its hinge forces
   /// \f$T(k) = H(k)f(k) - \tau_s(k)\f$ must give back the \f$T\f$ we started from.

@@ -56,4 +56,42 @@ Mat6 transform_symmetric(const Phi& phi, const Mat6& P) {
   return out;
 }
 
+// Lesson 6, sections 2 and 8: f(k) = P+(k) alpha+(k) + z+(k) from the forward dynamics.
+std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x,
+                                             const VecX<double>& T) {
+  Workspace ws(m);
+  ForwardDynamics fd(m);
+  VecX<double> beta_dot(m.nv());
+  forward_dynamics(m, x, T, {}, ws, fd, beta_dot);
+  std::vector<Vec6<double>> f;
+  for (int k = 1; k <= m.n(); ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    f.push_back(fd.art.P_plus[j] * fd.alpha_plus[j].vector() + fd.z_plus[j].vector());
+  }
+  return f;
+}
+
+// Lesson 6, section 8: y(k) = phi(k,k-1) y(k-1) + R(k) (alpha(k) - alpha+(k)) + b(k).
+std::vector<Vec6<double>> composite_bias(const Model& m, const State& x,
+                                         const VecX<double>& beta_dot) {
+  Workspace ws(m);
+  VecX<double> T(m.nv());
+  inverse_dynamics(m, x, beta_dot, {}, ws, T);
+  std::vector<SpatialInertia> R(std::size_t(m.n()));
+  composite_inertias(m, ws, R);
+  const Vec6<double> base =
+      m.has_gravity() ? gravity_base_acceleration(m).vector() : Vec6<double>::Zero();
+  std::vector<Vec6<double>> y;
+  for (int k = 1; k <= m.n(); ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6 phi = ws.phi[j].matrix();  // phi(k+1,k)
+    const Vec6<double> alpha_plus = phi.transpose() * (k < m.n() ? ws.alpha[j + 1].vector() : base);
+    Vec6<double> yk = R[j].matrix() * (ws.alpha[j].vector() - alpha_plus) +
+                      gyroscopic_force(m.body(k).M, ws.V[j]).vector();
+    if (k > 1) yk += ws.phi[j - 1].matrix() * y.back();
+    y.push_back(yk);
+  }
+  return y;
+}
+
 }  // namespace soa::ex06
