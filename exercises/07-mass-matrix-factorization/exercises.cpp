@@ -30,4 +30,25 @@ double log_det_mass_matrix(const Model& m, const State& x) {
   throw exercise::NotDone("7.5 log_det_mass_matrix");
 }
 
+MatX omega_from_upsilon(const Model& m, const State& x) {
+  (void)m, (void)x;
+  throw exercise::NotDone("7.6 omega_from_upsilon");
+}
+
+MatX minv_from_upsilon(const Model& m, const State& x) {
+  (void)m, (void)x;
+  throw exercise::NotDone("7.7 minv_from_upsilon");
+}
+
+soa::Mat6<double> operational_inverse_inertia(const Model& m, const State& x, int k,
+                                              const Pose& frame) {
+  (void)m, (void)x, (void)k, (void)frame;
+  throw exercise::NotDone("7.8 operational_inverse_inertia");
+}
+
+VecX innovations_coordinates(const Model& m, const State& x) {
+  (void)m, (void)x;
+  throw exercise::NotDone("7.9 innovations_coordinates");
+}
+
 }  // namespace soa::ex07

@@ -1,7 +1,9 @@
 /// \file
 /// Lesson 7 exercises: the spatial operators \f$K\f$ and \f$\psi\f$, the innovations
 /// factorization of the mass matrix and its inverse, the diagonal of \f$\mathcal M^{-1}\f$ in
-/// \f$O(N)\f$, and solving \f$\mathcal M y = b\f$ without forming \f$\mathcal M\f$.
+/// \f$O(N)\f$, solving \f$\mathcal M y = b\f$ without forming \f$\mathcal M\f$, the operator
+/// \f$\Omega\f$ from \f$\Upsilon\f$, \f$\mathcal M^{-1}\f$ from \f$\Upsilon\f$, the
+/// operational-space inverse inertia and the innovations coordinates.
 ///
 /// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
 /// joins body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "soa/chain.hpp"
+#include "soa/chain/mass_matrix_inverse_upsilon.hpp"
 #include "soa/soa.hpp"
 
 namespace soa::ex07 {
@@ -89,5 +92,47 @@ VecX solve(const Model& m, const State& x, const VecX& b);
 /// (the logarithm: the product over- or underflows on long chains), without forming
 /// \f$\mathcal M\f$.
 double log_det_mass_matrix(const Model& m, const State& x);
+
+/// **Exercise 7.6: \f$\Omega\f$ from its diagonal \f$\Upsilon\f$.**
+/// Return the dense 6n x 6n \f$\Omega = \psi^*H^*D^{-1}H\psi\f$ assembled block by block
+/// from \f$\Omega = \Upsilon + \tilde\psi^*\Upsilon + \Upsilon\tilde\psi\f$ (lesson 7, section
+/// 6): \f$\Omega(i,j) = \Upsilon(i)\,\psi(i,j)\f$ for \f$i \ge j\f$ and
+/// \f$\Omega(j,i) = \Omega^*(i,j)\f$, with \f$\psi(i,j) = \psi(i,i-1)\cdots\psi(j+1,j)\f$,
+/// \f$\psi(k+1,k) = \phi(k+1,k)\bar\tau(k)\f$. \f$\Upsilon(k)\f$ may come from
+/// soa::upsilons() (`w.Upsilon[k-1]`). The tests compare it with
+/// \f$\phi^*H^*\mathcal M^{-1}H\phi\f$ and with the library. Do not call
+/// soa::InnovationsOperatorsT.
+MatX omega_from_upsilon(const Model& m, const State& x);
+
+/// **Exercise 7.7: \f$\mathcal M^{-1}\f$ from \f$\Upsilon\f$.**
+/// Return \f$\mathcal M^{-1}\f$ (nv x nv) by the \f$O(N^2)\f$ algorithm of lesson 7, section
+/// 7: \f$\mathcal M^{-1}(k,k) = D^{-1}(k) + G^*(k)\Upsilon^+(k)G(k)\f$ with
+/// \f$\Upsilon^+(k) = \phi^*(k+1,k)\Upsilon(k+1)\phi(k+1,k)\f$, and for \f$k > i\f$
+/// \f$\mathcal M^{-1}(k,i) = L(k)\,z_i(k)\f$, \f$L(k) = G^*(k)\Upsilon^+(k) -
+/// \mathcal M^{-1}(k,k)H(k)\f$, \f$z_i(i+1) = \phi(i+1,i)G(i)\f$, \f$z_i(k+1) =
+/// \phi(k+1,k)[z_i(k) - G(k)H(k)z_i(k)]\f$; the upper triangle by symmetry. Without forming
+/// \f$\mathcal M\f$. soa::upsilons() may give \f$\Upsilon\f$; do not call
+/// soa::mass_matrix_inverse, soa::mass_matrix_inverse_upsilon, soa::mass_matrix_crb,
+/// soa::OperatorsT or soa::InnovationsOperatorsT.
+MatX minv_from_upsilon(const Model& m, const State& x);
+
+/// **Exercise 7.8: the operational-space inverse inertia.**
+/// For the frame F fixed on body \p k at \f${}^{O_k}T_F\f$ = \p frame, return
+/// \f$J\mathcal M^{-1}J^* = \phi^*(O_k,F)\,\Upsilon(k)\,\phi(O_k,F)\f$ (6x6, lesson 7,
+/// section 8) in \f$O(N)\f$: the Riccati recursion, then the \f$\Upsilon\f$ recursion base to
+/// tip down to body k (write it yourself, as in exercise 7.3), then the transform
+/// (\f$\phi(O_k,F)\f$ is `Phi(frame)`). The tests compare it with the dense
+/// \f$J\mathcal M^{-1}J^*\f$ (soa::jacobian()). Do not call soa::upsilons,
+/// soa::operational_space_inverse_inertia, soa::mass_matrix_inverse or soa::OperatorsT.
+soa::Mat6<double> operational_inverse_inertia(const Model& m, const State& x, int k,
+                                              const Pose& frame);
+
+/// **Exercise 7.9: the innovations coordinates.**
+/// Return \f$\eta = [I + H\phi K]^*\beta\f$ at the state \p x (\f$\beta\f$ = `x.beta`) in
+/// \f$O(N)\f$ by \f$\eta(k) = G^*(k)\,V(k)\f$ (lesson 7, section 9), \f$V\f$ from
+/// soa::update_velocities(). The tests check \f$\tfrac12\beta^*\mathcal M\beta =
+/// \tfrac12\eta^*D\eta\f$ and compare with the dense \f$[I + H\phi K]^*\beta\f$. Do not call
+/// soa::InnovationsOperatorsT or soa::OperatorsT.
+VecX innovations_coordinates(const Model& m, const State& x);
 
 }  // namespace soa::ex07

@@ -6,8 +6,13 @@
 /// \f$\mathcal M = [I + H\phi K]\, D\, [I + H\phi K]^*\f$, the closed-form inverse of its
 /// factor, \f$[I + H\phi K]^{-1} = I - H\psi K\f$, and with it
 /// \f$\mathcal M^{-1} = [I - H\psi K]^*\, D^{-1}\, [I - H\psi K]\f$: the inverse of the mass
-/// matrix in \f$O(N^2)\f$ without ever forming \f$\mathcal M\f$. Every identity is computed on
-/// concrete numbers and checked; the program ends with the count of checks that passed.
+/// matrix in \f$O(N^2)\f$ without ever forming \f$\mathcal M\f$; then what the inverse
+/// factorization gives besides: the operator \f$\Omega = \phi^*H^*\mathcal M^{-1}H\phi\f$ and
+/// its diagonal \f$\Upsilon\f$ by a Lyapunov recursion, a second \f$O(N^2)\f$ inverse built on
+/// \f$\Upsilon\f$, the operational-space inverse inertia \f$J\mathcal M^{-1}J^*\f$ of a frame in
+/// \f$O(N)\f$, and the innovations coordinates that decouple the kinetic energy. Every
+/// identity is computed on concrete numbers and checked; the program ends with the count of
+/// checks that passed.
 ///
 /// Numbering (\ref conventions): **body 1 is the tip, body n is next to the base**, hinge k
 /// joins body k+1 to body k, and \f$\theta\f$, \f$\beta\f$ are stacked tip first.
@@ -21,7 +26,13 @@
 /// - invert its factor and the mass matrix in closed form, and turn
 ///   \f$[I - H\psi K]^* D^{-1} [I - H\psi K]\f$ into tip-to-base and base-to-tip recursions
 ///   that give \f$\mathcal M^{-1}\f$ in \f$O(N^2)\f$;
-/// - judge the error of an inverse by the condition number of \f$\mathcal M\f$.
+/// - judge the error of an inverse by the condition number of \f$\mathcal M\f$;
+/// - derive \f$\phi^*H^*\mathcal M^{-1}H\phi = \psi^*H^*D^{-1}H\psi = \Omega\f$, split it as
+///   \f$\Upsilon + \tilde\psi^*\Upsilon + \Upsilon\tilde\psi\f$ and compute \f$\Upsilon\f$ base to
+///   tip; build \f$\mathcal M^{-1}\f$ from it, and \f$J\mathcal M^{-1}J^*\f$ of any frame in
+///   \f$O(N)\f$;
+/// - show that \f$\eta = [I + H\phi K]^*\beta\f$ decouples the kinetic energy, and compute
+///   \f$\eta(k) = G^*(k)V(k)\f$ in \f$O(N)\f$.
 ///
 /// Run it as `lesson07 OUTDIR`: it prints each check, and writes the error of
 /// \f$\mathcal M^{-1}\f$ on chains of 2 to 200 links (`l7_minv_error.csv`) and its figure
@@ -40,6 +51,8 @@
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "soa/chain.hpp"
+#include "soa/chain/mass_matrix_inverse_upsilon.hpp"
+#include "soa/chain/operational_space.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
 
@@ -171,6 +184,40 @@ soa::MatX<T> inverse_on2(const soa::ModelT<T>& m, const soa::StateT<T>& x) {
   soa::mass_matrix_inverse(m, x, ws, w, Minv);
   return Minv;
 }
+/// \f$\mathcal M^{-1}\f$ by the \f$O(N^2)\f$ algorithm built on \f$\Upsilon\f$ (section 7).
+template <class T>
+soa::MatX<T> inverse_upsilon(const soa::ModelT<T>& m, const soa::StateT<T>& x) {
+  soa::WorkspaceT<T> ws(m);
+  soa::update_phi(m, x.theta, ws);
+  soa::MassMatrixInverseUpsilonT<T> w(m);
+  soa::MatX<T> Minv;
+  soa::mass_matrix_inverse_upsilon(m, x, ws, w, Minv);
+  return Minv;
+}
+
+/// The frame of section 8, fixed on each body in turn: \f${}^{O_k}T_F\f$.
+Pose tool_frame() {
+  return Pose(soa::UnitQuaternion(Vec3(0.3, -0.2, 0.5), 0.9).matrix(), Vec3(0.1, -0.2, 0.3));
+}
+
+/// The generalized velocity of section 9: \f$\beta_i = \cos(1 + i)\f$.
+VecX test_velocity(int nv) {
+  VecX beta(nv);
+  for (int i = 0; i < nv; ++i) beta[i] = std::cos(1.0 + i);
+  return beta;
+}
+
+/// The innovations coordinates in \f$O(N)\f$ (section 9): \f$\eta(k) = G^*(k)\,V(k)\f$, with
+/// \f$V\f$ from the velocity recursion of lesson 3 and \f$G\f$ from the Riccati recursion.
+VecX innovations_coordinates(const Model& m, const soa::Articulated& art, const Workspace& ws) {
+  VecX eta(m.nv());
+  for (int k = 1; k <= m.n(); ++k) {
+    const Body& B = m.body(k);
+    eta.segment(B.v_offset, B.hinge.nv()) =
+        art.G[std::size_t(k - 1)].transpose() * ws.V[std::size_t(k - 1)].vector();
+  }
+  return eta;
+}
 
 /// The 2-norm condition number \f$\lambda_{\max}/\lambda_{\min}\f$ of a symmetric positive
 /// definite matrix.
@@ -200,16 +247,32 @@ struct Residuals {
   double inverse = 0;         // [I - H psi K]* D^-1 [I - H psi K] = inv(M), / cond(M)
   double on2 = 0;             // mass_matrix_inverse = the operator expression
   double on2_dense = 0;       // mass_matrix_inverse = inv(M), / cond(M)
+  double omega = 0;           // phi* H* inv(M) H phi = psi* H* D^-1 H psi, / cond(M)
+  double omega_split = 0;     // Omega = Upsilon + psi~* Upsilon + Upsilon psi~
+  double upsilon_rec = 0;     // upsilons() = diagonal blocks of Omega
+  double minv_diag = 0;       // D^-1 + G* Upsilon+ G = diagonal blocks of M^-1
+  double on2u = 0;            // mass_matrix_inverse_upsilon = the operator expression
+  double on2u_sweep = 0;      // mass_matrix_inverse_upsilon = mass_matrix_inverse, / n cond(M)
+  double on2u_dense = 0;      // mass_matrix_inverse_upsilon = inv(M), / cond(M)
+  double opspace = 0;         // phi*(O_k,F) Upsilon(k) phi(O_k,F) = J inv(M) J*, / cond(M)
+  double eta_energy = 0;      // 1/2 beta* M beta = 1/2 eta* D eta
+  double eta_rec = 0;         // G*(k) V(k) = [I + H phi K]* beta
+  double eta_back = 0;        // [I - H psi K]* eta = beta
   double cond = 0;            // cond(M)
   double kappa = 0;
 
   void max_with(const Residuals& r) {
     for (double Residuals::*f :
-         {&Residuals::phi_inverse, &Residuals::E_psi, &Residuals::PH_GD, &Residuals::riccati,
-          &Residuals::phiMphi, &Residuals::phi_psi, &Residuals::psiKHphi, &Residuals::phiKHpsi,
-          &Residuals::factorization, &Residuals::triangular, &Residuals::determinant,
-          &Residuals::factor_inverse, &Residuals::inverse, &Residuals::on2, &Residuals::on2_dense,
-          &Residuals::cond, &Residuals::kappa})
+         {&Residuals::phi_inverse, &Residuals::E_psi,       &Residuals::PH_GD,
+          &Residuals::riccati,     &Residuals::phiMphi,     &Residuals::phi_psi,
+          &Residuals::psiKHphi,    &Residuals::phiKHpsi,    &Residuals::factorization,
+          &Residuals::triangular,  &Residuals::determinant, &Residuals::factor_inverse,
+          &Residuals::inverse,     &Residuals::on2,         &Residuals::on2_dense,
+          &Residuals::omega,       &Residuals::omega_split, &Residuals::upsilon_rec,
+          &Residuals::minv_diag,   &Residuals::on2u,        &Residuals::on2u_sweep,
+          &Residuals::on2u_dense,  &Residuals::opspace,     &Residuals::eta_energy,
+          &Residuals::eta_rec,     &Residuals::eta_back,    &Residuals::cond,
+          &Residuals::kappa})
       this->*f = std::max(this->*f, r.*f);
   }
 };
@@ -271,6 +334,47 @@ Residuals identities(const Model& m, const State& x) {
   const MatX on2 = inverse_on2(m, x);
   r.on2 = (on2 - Minv).norm() / (u * big({Li.norm() * Li.norm() * io.D_inv.norm(), on2.norm()}));
   r.on2_dense = (on2 - dense).norm() / (dense.norm() * kEps * N * r.cond);
+  // Sections 6-9.
+  const MatX Omega = io.Omega(), U = io.Upsilon(), pt = io.psi - I;
+  const MatX lhs = phi.transpose() * H.transpose() * dense * H * phi;
+  r.omega = (lhs - Omega).norm() / (big({Omega.norm()}) * kEps * N * r.cond);
+  r.omega_split = (Omega - (U + pt.transpose() * U + U * pt)).norm() /
+                  (u * big({Omega.norm(), 2 * pt.norm() * U.norm()}));
+  Workspace ws(m);
+  soa::update_phi(m, x.theta, ws);
+  soa::update_poses(m, ws);
+  soa::Upsilon ups(m);
+  soa::upsilons(m, x, ws, ups);
+  const double inv_terms = big({Li.norm() * Li.norm() * io.D_inv.norm(), Minv.norm()});
+  double e_rec = 0, e_diag = 0, e_op = 0;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J;
+  soa::Mat6<double> op;
+  for (int k = 1; k <= m.n(); ++k) {
+    const std::size_t i = std::size_t(k - 1);
+    const int o = m.body(k).v_offset, nk = m.body(k).hinge.nv(), b = 6 * (k - 1);
+    e_rec = std::max(e_rec, (ups.Upsilon[i] - U.block(b, b, 6, 6)).norm());
+    e_diag = std::max(e_diag, (MatX(ups.Minv_kk[i]) - Minv.block(o, o, nk, nk)).norm());
+    soa::jacobian(m, x.theta, ws, k, tool_frame(), J);
+    const MatX ref = J * dense * J.transpose();
+    soa::operational_space_inverse_inertia(tool_frame(), ups.Upsilon[i], op);
+    e_op = std::max(e_op, (op - ref).norm() / big({ref.norm()}));
+  }
+  r.upsilon_rec = e_rec / (u * big({Omega.norm()}));
+  r.minv_diag = e_diag / (u * inv_terms);
+  r.opspace = e_op / (kEps * N * r.cond);
+  const MatX on2u = inverse_upsilon(m, x);
+  r.on2u = (on2u - Minv).norm() / (u * inv_terms);
+  r.on2u_sweep = (on2u - on2).norm() / (on2.norm() * kEps * nv * r.cond);
+  r.on2u_dense = (on2u - dense).norm() / (dense.norm() * kEps * N * r.cond);
+  State xb = x;
+  xb.beta = test_velocity(nv);
+  soa::update_velocities(m, xb, ws);
+  const VecX eta = io.eta(xb.beta), eta_n = innovations_coordinates(m, ups.art, ws);
+  const double T = 0.5 * xb.beta.dot(Mass * xb.beta), Te = 0.5 * eta.dot(io.D * eta);
+  r.eta_energy = std::abs(T - Te) /
+                 (u * big({Mass.norm() * xb.beta.squaredNorm(), io.D.norm() * eta.squaredNorm()}));
+  r.eta_rec = (eta_n - eta).norm() / (u * big({L.norm() * xb.beta.norm()}));
+  r.eta_back = (Li.transpose() * eta - xb.beta).norm() / (u * big({Li.norm() * eta.norm()}));
   return r;
 }
 
@@ -454,15 +558,17 @@ int main(int argc, char** argv) {
   /// Eigen's dense inverse of the mass matrix (LU, from the composite bodies of lesson 5),
   /// and the reference, the \f$O(N^2)\f$ algorithm in long double (\f$\varepsilon = 1.1\cdot
   /// 10^{-19}\f$), itself checked against Eigen's dense inverse in long double. The relative
-  /// error \f$\|X - X_{\rm ref}\|/\|X_{\rm ref}\|\f$ of an inverse computed by a backward
+  /// error \f$\|X - X_{\rm ref}\|/\|X_{\rm ref}\|\f$ (also of the \f$\Upsilon\f$-based inverse of
+  /// section 7, the fourth curve) of an inverse computed by a backward
   /// stable method is bounded by about \f$n\,\varepsilon\,\mathrm{cond}(\mathcal M)\f$; the
   /// dense inverse reaches it, since rounding \f$\mathcal M\f$ alone costs that much. The
   /// \f$O(N^2)\f$ algorithm never rounds \f$\mathcal M\f$: its error follows the articulated
   /// quantities \f$D(k)\f$ and \f$G(k)\f$ instead, and stays below the dense one here.
   checks.section("5. accuracy against n");
   std::ofstream csv(out / "l7_minv_error.csv");
-  csv << "n,cond,err_on2,err_dense,eps_cond,on2_vs_dense_over_eps_n_cond\n";
+  csv << "n,cond,err_on2,err_dense,eps_cond,on2_vs_dense_over_eps_n_cond,err_upsilon\n";
   double worst_on2 = 0, worst_on2_n = 0, worst_dense = 0, worst_vs = 0, worst_ref = 0;
+  double worst_ups = 0;
   int n_on2_better = 0, n_cases = 0;
   for (const int n : {2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100, 150, 200}) {
     State x;
@@ -471,6 +577,7 @@ int main(int argc, char** argv) {
     const double c = cond(Mass);
     const MatX on2 = inverse_on2(m, x);
     const MatX dense = Mass.inverse();
+    const MatX on2u = inverse_upsilon(m, x);
     using L = long double;
     const soa::ModelT<L> mL = cast_model<L>(m);
     const soa::StateT<L> xL{x.theta.cast<L>(), x.beta.cast<L>()};
@@ -479,6 +586,8 @@ int main(int argc, char** argv) {
     const L ref_norm = ref.norm();
     const double err_on2 = double((on2.cast<L>() - ref).norm() / ref_norm);
     const double err_dense = double((dense.cast<L>() - ref).norm() / ref_norm);
+    const double err_ups = double((on2u.cast<L>() - ref).norm() / ref_norm);
+    worst_ups = std::max(worst_ups, err_ups / (kEps * n * c));
     const double vs = (on2 - dense).norm() / dense.norm() / (kEps * n * c);
     worst_on2 = std::max(worst_on2, err_on2 / (kEps * n * c));
     worst_on2_n = std::max(worst_on2_n, err_on2 / (kEps * n));
@@ -488,11 +597,12 @@ int main(int argc, char** argv) {
         worst_ref, double((ref_dense - ref).norm() / ref_norm) / (double(soa::eps<L>()) * n * c));
     n_on2_better += err_on2 <= err_dense ? 1 : 0;
     ++n_cases;
-    std::printf("  n = %3d  cond(M) = %.3e  error O(N^2) %.2e  dense %.2e  eps cond %.2e\n", n, c,
-                err_on2, err_dense, kEps * c);
+    std::printf(
+        "  n = %3d  cond(M) = %.3e  error O(N^2) %.2e  Upsilon %.2e  dense %.2e  eps cond %.2e\n",
+        n, c, err_on2, err_ups, err_dense, kEps * c);
     char line[200];
-    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6e,%.6e,%.6e\n", n, c, err_on2, err_dense,
-                  kEps * c, vs);
+    std::snprintf(line, sizeof line, "%d,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e\n", n, c, err_on2, err_dense,
+                  kEps * c, vs, err_ups);
     csv << line;
   }
   csv.close();
@@ -500,6 +610,7 @@ int main(int argc, char** argv) {
                4.0);
   checks.check("O(N^2) error <= n eps cond(M) (worst ratio)", worst_on2, 1.0);
   checks.check("dense inverse error <= n eps cond(M) (worst ratio)", worst_dense, 1.0);
+  checks.check("Upsilon-based O(N^2) error <= n eps cond(M) (worst ratio)", worst_ups, 1.0);
   checks.check("this chain: O(N^2) error <= 4 n eps, whatever cond(M) (worst / n eps)", worst_on2_n,
                4.0);
   checks.check("O(N^2) = dense inverse to n eps cond(M) (worst ratio)", worst_vs, 2.0);
@@ -521,6 +632,132 @@ int main(int argc, char** argv) {
   /// recursions lose less when the articulated quantities are well conditioned. Lesson 8
   /// solves \f$\mathcal M\dot\beta = T - \mathcal C\f$ with one column's worth of the same
   /// recursions, \f$O(N)\f$.
+
+  /// ## 6. The operator \f$\Omega\f$ and its diagonal \f$\Upsilon\f$
+  ///
+  /// The inverse factor acting on \f$H\phi\f$: by section 2, \f$H\psi KH\phi = H(\phi - \psi)\f$,
+  /// so \f$[I - H\psi K]H\phi = H\psi\f$. Between \f$\phi^*H^*\f$ and \f$H\phi\f$ the inverse
+  /// factorization of section 4 becomes
+  /// \f[ \phi^*H^*\mathcal M^{-1}H\phi = (H\phi)^*[I - H\psi K]^*D^{-1}[I - H\psi K]H\phi
+  ///     = \psi^*H^*D^{-1}H\psi \equiv \Omega , \f]
+  /// the articulated analogue of \f$\phi M\phi^*\f$ (Jain 2011, chapter 7). \f$\Omega\f$ is a
+  /// sum over bodies, \f$\Omega(i,j) = \sum_{k \ge \max(i,j)}\psi^*(k,i)\,H^*(k)D^{-1}(k)H(k)\,
+  /// \psi(k,j)\f$. For \f$i \ge j\f$, \f$\psi(k,j) = \psi(k,i)\psi(i,j)\f$, so
+  /// \f$\Omega(i,j) = \Upsilon(i)\,\psi(i,j)\f$ with
+  /// \f$\Upsilon(i) = \sum_{k \ge i}\psi^*(k,i)H^*(k)D^{-1}(k)H(k)\psi(k,i) = \Omega(i,i)\f$:
+  /// with \f$\Upsilon = \mathrm{diag}(\Upsilon(k))\f$ and \f$\tilde\psi = \psi - I\f$ (strictly
+  /// lower triangular),
+  /// \f[ \Omega = \Upsilon + \tilde\psi^*\Upsilon + \Upsilon\tilde\psi . \f]
+  /// Splitting off the term \f$k = i\f$ of the sum gives the backward Lyapunov recursion, base
+  /// to tip, with \f$\psi(k+1,k) = \phi(k+1,k)\bar\tau(k)\f$:
+  /// \f[ \Upsilon(n+1) = 0, \qquad \Upsilon(k) = \psi^*(k+1,k)\,\Upsilon(k+1)\,\psi(k+1,k) +
+  ///     H^*(k)D^{-1}(k)H(k) , \f]
+  /// the mirror image of the Riccati recursion for \f$P\f$ (tip to base, \f$\psi\f$ in place of
+  /// \f$\psi^*\f$). Written with \f$\Upsilon^+(k) = \phi^*(k+1,k)\Upsilon(k+1)\phi(k+1,k)\f$ and
+  /// \f$Y = \Upsilon^+(k)G(k)\f$, \f$\bar\tau^*\Upsilon^+\bar\tau + H^*D^{-1}H = \Upsilon^+ -
+  /// H^*Y^* - YH + H^*[D^{-1} + G^*Y]H\f$: one transform of a symmetric 6x6 (no 6x6
+  /// \f$\phi\f$: soa::transpose_transform_symmetric()) and products with the \f$6 \times n_k\f$
+  /// blocks, \f$O(N)\f$ in all (soa::upsilons(), soa::upsilon_step()). The bracket is a diagonal
+  /// block of \f$\mathcal M^{-1}\f$ (exercise 7.3): \f$H\psi K\f$ is strictly lower triangular,
+  /// so in \f$\mathcal M^{-1} = D^{-1} - D^{-1}H\psi K - K^*\psi^*H^*D^{-1} + K^*\Omega K\f$ only
+  /// the first and last terms reach the diagonal,
+  /// \f[ \mathcal M^{-1}(k,k) = D^{-1}(k) + G^*(k)\,\Upsilon^+(k)\,G(k) . \f]
+  checks.section("6. Omega and Upsilon");
+  check_all("phi* H* inv(M) H phi = psi* H* D^-1 H psi (/ cond(M))", &Residuals::omega);
+  check_all("Omega = Upsilon + psi~* Upsilon + Upsilon psi~", &Residuals::omega_split);
+  check_all("upsilons() (O(N), base to tip) = diagonal blocks of Omega", &Residuals::upsilon_rec);
+  check_all("D^-1(k) + G*(k) Upsilon+(k) G(k) = M^-1(k,k)", &Residuals::minv_diag);
+  if (!scenes.empty()) {
+    const Named& s = scenes[0];
+    Workspace ws(s.m);
+    soa::update_phi(s.m, s.x.theta, ws);
+    soa::Upsilon ups(s.m);
+    soa::upsilons(s.m, s.x, ws, ups);
+    std::printf("  the double pendulum, from upsilons():\n");
+    for (int k = s.m.n(); k >= 1; --k) {
+      const std::string name = "Upsilon(" + std::to_string(k) + ")";
+      print(name.c_str(), ups.Upsilon[std::size_t(k - 1)]);
+    }
+    for (int k = s.m.n(); k >= 1; --k)
+      std::printf("  M^-1(%d,%d) = %.6f from Upsilon, %.6f from the inverse of M\n", k, k,
+                  ups.Minv_kk[std::size_t(k - 1)](0, 0),
+                  mass_matrix(s.m, s.x).inverse()(s.m.body(k).v_offset, s.m.body(k).v_offset));
+  }
+
+  /// ## 7. \f$\mathcal M^{-1}\f$ in \f$O(N^2)\f$ from \f$\Upsilon\f$
+  ///
+  /// The off-diagonal blocks of the same expansion. For \f$k > i\f$ (hinge k inboard of hinge
+  /// i), \f$(D^{-1}H\psi K)(k,i) = D^{-1}(k)H(k)\psi(k,i+1)\phi(i+1,i)G(i)\f$, the term
+  /// \f$K^*\psi^*H^*D^{-1}\f$ is zero there (it is strictly upper triangular), and
+  /// \f$(K^*\Omega K)(k,i) = G^*(k)\phi^*(k+1,k)\,\Omega(k+1,i+1)\,\phi(i+1,i)G(i)\f$ with
+  /// \f$\Omega(k+1,i+1) = \Upsilon(k+1)\psi(k+1,k)\psi(k,i+1)\f$. Since
+  /// \f$\phi^*(k+1,k)\Upsilon(k+1)\psi(k+1,k) = \Upsilon^+(k)\bar\tau(k)\f$ and
+  /// \f$G^*\Upsilon^+\bar\tau = G^*\Upsilon^+ - G^*\Upsilon^+GH\f$,
+  /// \f[ \mathcal M^{-1}(k,i) = L(k)\,z_i(k), \qquad L(k) = G^*(k)\Upsilon^+(k) -
+  ///     \mathcal M^{-1}(k,k)\,H(k), \qquad z_i(k) = \psi(k,i+1)\,\phi(i+1,i)\,G(i) , \f]
+  /// and \f$z_i\f$ is carried tip to base by one propagation per column,
+  /// \f$z_i(i+1) = \phi(i+1,i)G(i)\f$, \f$z_i(k+1) = \phi(k+1,k)[z_i(k) - G(k)H(k)z_i(k)]\f$.
+  /// The algorithm: the Riccati recursion tip to base; \f$\Upsilon\f$, \f$\mathcal M^{-1}(k,k)\f$
+  /// and \f$L(k)\f$ base to tip, \f$O(N)\f$; then tip to base, all columns at once, \f$O(N)\f$
+  /// per column, \f$O(N^2)\f$ in all; the upper triangle by symmetry. No \f$\mathcal M\f$, no
+  /// dense operator, no 6x6 \f$\phi\f$ (\f$z\f$ is moved as rows of an \f$n_v \times 6\f$
+  /// block, by \f$(R, l)\f$). soa::mass_matrix_inverse_upsilon(); `make bench` times it
+  /// against soa::mass_matrix_inverse() (MassMatrixInverseUpsilon and MassMatrixInverse in
+  /// `build/bench/forward_bench.json`). Its accuracy on the link chains is the fourth curve
+  /// of section 5.
+  checks.section("7. M^-1 in O(N^2) from Upsilon");
+  check_all("mass_matrix_inverse_upsilon = [I - H psi K]* D^-1 [I - H psi K]", &Residuals::on2u);
+  check_all("mass_matrix_inverse_upsilon = mass_matrix_inverse (/ n cond(M))",
+            &Residuals::on2u_sweep);
+  check_all("mass_matrix_inverse_upsilon = inv(M) (/ cond(M))", &Residuals::on2u_dense);
+
+  /// ## 8. The operational-space inverse inertia in \f$O(N)\f$
+  ///
+  /// A frame F fixed on body k at \f${}^{O_k}T_F\f$ (an end effector, a tool) has the Jacobian
+  /// \f$J = B^*\phi^*H^*\f$ of lesson 3, \f$B^*\f$ picking body k and moving it to F by
+  /// \f$\phi^*(O_k,F)\f$. Its operational-space inverse inertia, the map from a spatial force
+  /// at F to the spatial acceleration it causes there, is then a single block of
+  /// \f$\Omega\f$:
+  /// \f[ \Lambda^{-1} = J\mathcal M^{-1}J^* = B^*\,\phi^*H^*\mathcal M^{-1}H\phi\,B = B^*\Omega B
+  ///     = \phi^*(O_k,F)\,\Upsilon(k)\,\phi(O_k,F) , \f]
+  /// for the tip (k = 1) \f$\phi^*(O_1,F)\Upsilon(1)\phi(O_1,F)\f$: the Riccati recursion tip
+  /// to base and the \f$\Upsilon\f$ recursion base to tip down to body k, \f$O(N)\f$, against
+  /// \f$O(N^2)\f$ for \f$\mathcal M^{-1}\f$ and \f$O(N)\f$ more for \f$J\f$ in the dense form.
+  /// soa::operational_space_inverse_inertia(); from the command line,
+  /// `soa mass-matrix --operational BODY SCENE.json`. Checked on every body of every chain
+  /// with the frame of tool_frame(), against \f$J\f$ of soa::jacobian() and the dense inverse.
+  checks.section("8. operational space");
+  check_all("phi*(O_k,F) Upsilon(k) phi(O_k,F) = J inv(M) J*, every body (/ cond(M))",
+            &Residuals::opspace);
+  if (scenes.size() > 1) {
+    const Named& s = scenes[1];
+    Workspace ws(s.m);
+    soa::update_phi(s.m, s.x.theta, ws);
+    soa::Upsilon ups(s.m);
+    soa::Mat6<double> op;
+    soa::operational_space_inverse_inertia(s.m, s.x, ws, ups, 1, Pose(), op);
+    std::printf("  %s, the tip frame O_1:\n", s.name.c_str());
+    print("J M^-1 J* = Upsilon(1)", op);
+  }
+
+  /// ## 9. Innovations coordinates
+  ///
+  /// With \f$\eta = [I + H\phi K]^*\beta\f$ the factorization of section 3 diagonalizes the
+  /// kinetic energy:
+  /// \f[ \tfrac12\beta^*\mathcal M\beta = \tfrac12\beta^*[I + H\phi K]\,D\,[I + H\phi K]^*\beta
+  ///     = \tfrac12\eta^*D\eta = \tfrac12\sum_k \eta^*(k)D(k)\eta(k) , \f]
+  /// a sum of decoupled terms, one per hinge, each weighted by its articulated hinge inertia;
+  /// back, \f$\beta = [I - H\psi K]^*\eta\f$ (section 4). \f$\eta\f$ in \f$O(N)\f$:
+  /// \f$\eta = \beta + K^*\phi^*H^*\beta = \beta + K^*V\f$ with \f$V = \phi^*H^*\beta\f$ the
+  /// velocities of lesson 3, so \f$\eta(k) = \beta(k) + G^*(k)\phi^*(k+1,k)V(k+1)\f$; and since
+  /// \f$G^*(k)H^*(k) = D^{-1}HPH^* = I\f$ and \f$V(k) = \phi^*(k+1,k)V(k+1) + H^*(k)\beta(k)\f$,
+  /// \f[ \eta(k) = G^*(k)\,V(k) , \f]
+  /// one product per body after the velocity recursion (innovations_coordinates()). Checked
+  /// at the velocity \f$\beta_i = \cos(1 + i)\f$ of test_velocity().
+  checks.section("9. innovations coordinates");
+  check_all("1/2 beta* M beta = 1/2 eta* D eta", &Residuals::eta_energy);
+  check_all("eta(k) = G*(k) V(k) (O(N)) = [I + H phi K]* beta", &Residuals::eta_rec);
+  check_all("[I - H psi K]* eta = beta", &Residuals::eta_back);
 
   return checks.finish();
 }

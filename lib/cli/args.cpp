@@ -19,7 +19,7 @@ constexpr VerbInfo kVerbs[] = {
     {Verb::Jacobian, "jacobian", "--q, --body"},
     {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd"},
     {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check"},
-    {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --check"},
+    {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --operational, --check"},
     {Verb::Simulate, "simulate",
      "--q, --qd, --integrator, --dt, --tol, --t-end, --out, --every, --out-dt"},
 };
@@ -86,19 +86,20 @@ Args parse_args(const std::vector<std::string>& argv) {
         (option == "--inverse" ? a.inverse : a.check) = true;
         continue;
       }
-      std::optional<std::string>* slot = option == "--q"            ? &a.q
-                                         : option == "--qd"         ? &a.qd
-                                         : option == "--qdd"        ? &a.qdd
-                                         : option == "--tau"        ? &a.tau
-                                         : option == "--integrator" ? &a.integrator
-                                         : option == "--dt"         ? &a.dt
-                                         : option == "--tol"        ? &a.tol
-                                         : option == "--t-end"      ? &a.t_end
-                                         : option == "--out"        ? &a.out
-                                         : option == "--every"      ? &a.every
-                                         : option == "--out-dt"     ? &a.out_dt
-                                         : option == "--body"       ? &a.body
-                                                                    : nullptr;
+      std::optional<std::string>* slot = option == "--q"             ? &a.q
+                                         : option == "--qd"          ? &a.qd
+                                         : option == "--qdd"         ? &a.qdd
+                                         : option == "--tau"         ? &a.tau
+                                         : option == "--integrator"  ? &a.integrator
+                                         : option == "--dt"          ? &a.dt
+                                         : option == "--tol"         ? &a.tol
+                                         : option == "--t-end"       ? &a.t_end
+                                         : option == "--out"         ? &a.out
+                                         : option == "--every"       ? &a.every
+                                         : option == "--out-dt"      ? &a.out_dt
+                                         : option == "--body"        ? &a.body
+                                         : option == "--operational" ? &a.operational
+                                                                     : nullptr;
       if (!slot) throw UsageError("unknown option \"" + option + "\"");
       if (!takes(v, option)) refuse();
       if (*slot) throw UsageError(option + " given twice");

@@ -24,6 +24,7 @@ struct Args {
   std::optional<Verb> verb;  ///< absent only with a top-level --help
   std::string scene;         ///< the scene file
   std::optional<std::string> q, qd, qdd, tau, body;  ///< option values as given
+  std::optional<std::string> operational;            ///< mass-matrix --operational BODY
   /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
   std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
   bool inverse = false;  ///< mass-matrix --inverse

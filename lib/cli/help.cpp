@@ -18,7 +18,7 @@ Usage:
   soa jacobian         SCENE.json [--q V,...] [--body NAME]
   soa inverse-dynamics SCENE.json [--q V,...] [--qd V,...] [--qdd V,...]
   soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...] [--check]
-  soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--check]
+  soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--operational BODY] [--check]
   soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
                        [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
   soa --help
@@ -120,7 +120,8 @@ const std::string& full_help() {
   inverse-dynamics  the hinge forces T that give the accelerations qdd
   forward-dynamics  the accelerations qdd under the hinge forces tau
   mass-matrix       the mass matrix at q, with symmetry and definiteness checks, and
-                    with --inverse its inverse
+                    with --inverse its inverse, with --operational BODY the 6x6
+                    operational-space inverse inertia J M^-1 J* of a body
   simulate          integrate the motion over time, trajectory as CSV
 
 )" + state_help(std::nullopt) + kFrames +
@@ -202,7 +203,7 @@ naming the body.
 const std::string& mass_matrix_help() {
   static const std::string text =
       std::string(
-          R"(Usage: soa mass-matrix SCENE.json [--q V,...] [--inverse] [--check]
+          R"(Usage: soa mass-matrix SCENE.json [--q V,...] [--inverse] [--operational BODY] [--check]
 
 The mass matrix M = H phi M phi* H* at q, computed in O(N^2) from the composite rigid body
 inertias (lesson 5: M(i,i) = H(i) R(i) H*(i), M(i,j) = H(i) phi(i,j) R(j) H*(j)). In JSON:
@@ -211,9 +212,14 @@ inertias (lesson 5: M(i,i) = H(i) R(i) H*(i), M(i,j) = H(i) phi(i,j) R(j) H*(j))
 With --inverse, also "Minv", the inverse computed in O(N^2) without forming M (lesson 7:
 M^-1 = [I - H psi K]* D^-1 [I - H psi K]), "probe_residual", the largest
 |M (Minv x) - x| / |x| over three random x (O(n_v^2)), and "identity_residual",
-max|M Minv - I|. The Cholesky factorization and M Minv cost O(n_v^3): they run up to
-n_v = 2000, beyond only with --check ("skipped" says so). Chains of more than 20000
-coordinates are refused (the matrix alone would be 3.2 GB).
+max|M Minv - I|. With --operational BODY (the name of a body of the file), also
+"operational": the operational-space inverse inertia J M^-1 J* of that body's frame
+("Lambda_inv", 6 rows [wx, wy, wz, vx, vy, vz], the frame's own coordinates), computed in
+O(N) as phi*(O_k,F) Upsilon(k) phi(O_k,F) (lesson 7), and "dense_residual",
+max|Lambda_inv - J M^-1 J*| / max|J M^-1 J*| against the dense form (J of the jacobian verb,
+M^-1 J* by an LDL* solve). The Cholesky factorization, M Minv and the dense J M^-1 J* cost
+O(n_v^3): they run up to n_v = 2000, beyond only with --check ("skipped" says so). Chains
+of more than 20000 coordinates are refused (the matrix alone would be 3.2 GB).
 
 )") + state_help(Verb::MassMatrix) +
       exit_help(Verb::MassMatrix);

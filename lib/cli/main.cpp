@@ -120,6 +120,8 @@ Result run(const Args& a) {
     VecX<double> beta_dot, tau;
     const State x = state_of(s, a, beta_dot, tau);
     const Scene::Frame* frame = a.body ? &find_frame(s, *a.body) : nullptr;
+    const Scene::Frame* operational =
+        a.operational ? &find_frame(s, *a.operational, "--operational") : nullptr;
     set_stage(std::string("computing ") + verb_name(*a.verb) + " (" + std::to_string(s.model.n()) +
               " bodies)");
     Result r;
@@ -137,7 +139,7 @@ Result run(const Args& a) {
         r.emit = forward_dynamics(s, x, tau, a.check);
         break;
       case Verb::MassMatrix:
-        r.emit = mass_matrix(s, x, a.inverse, a.check);
+        r.emit = mass_matrix(s, x, a.inverse, a.check, operational);
         break;
       case Verb::Simulate:
         r = simulate(s, x, simulation_options(a), output_options(a));

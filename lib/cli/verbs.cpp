@@ -17,6 +17,7 @@
 
 #include "output.hpp"
 #include "soa/chain.hpp"
+#include "soa/chain/operational_space.hpp"
 
 namespace soa::cli {
 namespace {
@@ -91,12 +92,13 @@ void set_stage(std::string what) {
   stage_text() = std::move(what);
 }
 
-const Scene::Frame& find_frame(const Scene& scene, const std::string& name) {
+const Scene::Frame& find_frame(const Scene& scene, const std::string& name,
+                               const std::string& option) {
   for (const Scene::Frame& f : scene.frames)
     if (f.name == name) return f;
   std::string names;
   for (const Scene::Frame& f : scene.frames) names += (names.empty() ? "" : ", ") + f.name;
-  throw Error("--body: no body named \"" + name + "\" (the bodies: " + names + ")");
+  throw Error(option + ": no body named \"" + name + "\" (the bodies: " + names + ")");
 }
 
 Emit kinematics(const Scene& scene, const State& x, const VecX<double>& beta_dot,
@@ -449,7 +451,8 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   return r;
 }
 
-Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check) {
+Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check,
+                 const Scene::Frame* operational) {
   const Model& m = scene.model;
   const int n = m.nv();
   if (n > kMassMatrixMax)
@@ -469,6 +472,8 @@ Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check) {
     double scale = 0;
     bool symmetric = true, dense = false, positive_definite = false;
     double identity_residual = 0, probe_residual = 0;
+    Mat6<double> op_inv = Mat6<double>::Zero();  // J M^-1 J* of --operational
+    double op_residual = 0;                      // vs the dense J M^-1 J*
   };
   auto c = std::make_shared<Checks>();
   c->scale = n > 0 ? M->cwiseAbs().maxCoeff() : 0.0;
@@ -496,7 +501,22 @@ Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check) {
     if (c->dense && n > 0)
       c->identity_residual = (*M * *Minv - MatX<double>::Identity(n, n)).cwiseAbs().maxCoeff();
   }
-  return [&scene, M, Minv, c, inverse](JsonWriter& w) {
+  if (operational) {  // O(N) from Upsilon (lesson 7, section 8); dense J M^-1 J* as the check
+    set_stage("computing the operational-space inverse inertia of " + operational->name);
+    Upsilon u(m);
+    operational_space_inverse_inertia(m, x, ws, u, operational->k, operational->offset(),
+                                      c->op_inv);
+    if (c->dense && n > 0) {
+      update_poses(m, ws);
+      Eigen::Matrix<double, 6, Eigen::Dynamic> J;
+      soa::jacobian(m, x.theta, ws, operational->k, operational->offset(), J);
+      const MatX<double> X = Eigen::LDLT<MatX<double>>(*M).solve(MatX<double>(J.transpose()));
+      const Mat6<double> ref = J * X;
+      const double scale = std::max(ref.cwiseAbs().maxCoeff(), 1e-300);
+      c->op_residual = (c->op_inv - ref).cwiseAbs().maxCoeff() / scale;
+    }
+  }
+  return [&scene, M, Minv, c, inverse, operational](JsonWriter& w) {
     const std::vector<int> idx = file_v_index(scene);
     const int n = int(idx.size());
     w.begin_object();
@@ -517,11 +537,23 @@ Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check) {
         w.member("identity_residual", c->identity_residual);
       }
     }
+    if (operational) {
+      w.key("operational");
+      w.begin_object();
+      w.member("body", operational->name);
+      w.key("rows");
+      w.strings({"wx", "wy", "wz", "vx", "vy", "vz"});
+      w.key("Lambda_inv");
+      w.rows(c->op_inv);
+      if (c->dense) w.member("dense_residual", c->op_residual);
+      w.end_object();
+    }
     if (!c->dense) {
       w.key("skipped");
       w.value("n_v = " + std::to_string(n) + " is over " + std::to_string(kDenseCheckMax) +
               ": positive_definite (a Cholesky factorization)" +
               (inverse ? std::string(" and identity_residual (M Minv - I)") : std::string()) +
+              (operational ? std::string(" and operational.dense_residual") : std::string()) +
               " cost O(n_v^3) and were not computed; --check computes them");
     }
     w.end_object();

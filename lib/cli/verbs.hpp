@@ -26,7 +26,8 @@ struct Result {
 };
 
 /// The frame of the body called \p name in \p scene; throws soa::Error("--body: ...").
-const Scene::Frame& find_frame(const Scene& scene, const std::string& name);
+const Scene::Frame& find_frame(const Scene& scene, const std::string& name,
+                               const std::string& option = "--body");
 
 /// Poses, velocities and accelerations (gravity not included) of every body in file order,
 /// or of \p only when it is not null.
@@ -61,8 +62,11 @@ Result simulate(const Scene& scene, const State& x, const SimulationOptions& opt
 
 /// The mass matrix in file order, with its symmetry and (up to kDenseCheckMax coordinates
 /// or with \p check) definiteness; with \p inverse, also its inverse by the O(N^2) algorithm
-/// of lesson 7, with its residual.
-Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check);
+/// of lesson 7, with its residual; with \p operational, the operational-space inverse inertia
+/// \f$J\mathcal M^{-1}J^* = \phi^*(O_k,F)\Upsilon(k)\phi(O_k,F)\f$ of that body's frame in O(N)
+/// (lesson 7, section 8), with (as for the checks above) its difference from the dense form.
+Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check,
+                 const Scene::Frame* operational = nullptr);
 
 /// What the program is building, for an out-of-memory message ("the mass matrix (n_v =
 /// 100000)").

@@ -121,3 +121,103 @@ double log_det_mass_matrix(const Model& m, const State& x) {
 }
 
 }  // namespace soa::ex07
+
+namespace soa::ex07 {
+
+namespace {
+
+// psi(k+1,k) = phi(k+1,k) tau_bar(k), 6x6 (k < n).
+Mat6<double> psi_step(const Model& m, const State& x, const Workspace& ws, const Articulated& art,
+                      int k) {
+  return ws.phi[std::size_t(k - 1)].matrix() * art.tau_bar(m, x.theta, k);
+}
+
+}  // namespace
+
+// Exercise 7.6: Omega(i,j) = Upsilon(i) psi(i,j) for i >= j, Omega(j,i) = Omega(i,j)*.
+MatX omega_from_upsilon(const Model& m, const State& x) {
+  const int n = m.n();
+  Workspace ws(m);
+  update_phi(m, x.theta, ws);
+  Upsilon u(m);
+  upsilons(m, x, ws, u);
+  MatX Omega = MatX::Zero(6 * n, 6 * n);
+  for (int j = 1; j <= n; ++j) {
+    Mat6<double> psi_ij = Mat6<double>::Identity();  // psi(i,j), i = j first
+    for (int i = j; i <= n; ++i) {
+      if (i > j) psi_ij = psi_step(m, x, ws, u.art, i - 1) * psi_ij;
+      const Mat6<double> block = u.Upsilon[std::size_t(i - 1)] * psi_ij;
+      Omega.block(6 * (i - 1), 6 * (j - 1), 6, 6) = block;
+      Omega.block(6 * (j - 1), 6 * (i - 1), 6, 6) = block.transpose();
+    }
+  }
+  return Omega;
+}
+
+// Exercise 7.7: diagonal blocks from Upsilon+, off-diagonal ones by carrying z_i(k) tip to base.
+MatX minv_from_upsilon(const Model& m, const State& x) {
+  const int n = m.n();
+  Workspace ws(m);
+  update_phi(m, x.theta, ws);
+  Upsilon u(m);
+  upsilons(m, x, ws, u);
+  const Articulated& art = u.art;
+  MatX Minv = MatX::Zero(m.nv(), m.nv());
+  std::vector<MatX> L(static_cast<std::size_t>(n)), Mkk(static_cast<std::size_t>(n));
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6<double> Up =
+        k < n ? Mat6<double>(ws.phi[j].matrix().transpose() * u.Upsilon[j + 1] * ws.phi[j].matrix())
+              : Mat6<double>::Zero();
+    const MatX G = art.G[j];
+    Mkk[j] = MatX(art.D_inv[j]) + G.transpose() * Up * G;
+    L[j] = G.transpose() * Up - Mkk[j] * H_star(m, x, k).transpose();
+  }
+  for (int i = 1; i <= n; ++i) {
+    const Body& Bi = m.body(i);
+    const int oi = Bi.v_offset, ni = Bi.hinge.nv();
+    Minv.block(oi, oi, ni, ni) = Mkk[std::size_t(i - 1)];
+    if (i == n) continue;
+    MatX z = ws.phi[std::size_t(i - 1)].matrix() * MatX(art.G[std::size_t(i - 1)]);  // z_i(i+1)
+    for (int k = i + 1; k <= n; ++k) {
+      const Body& Bk = m.body(k);
+      const MatX block = L[std::size_t(k - 1)] * z;
+      Minv.block(Bk.v_offset, oi, Bk.hinge.nv(), ni) = block;
+      Minv.block(oi, Bk.v_offset, ni, Bk.hinge.nv()) = block.transpose();
+      if (k < n) {
+        const MatX Hz = H_star(m, x, k).transpose() * z;
+        z = ws.phi[std::size_t(k - 1)].matrix() * (z - MatX(art.G[std::size_t(k - 1)]) * Hz);
+      }
+    }
+  }
+  return Minv;
+}
+
+// Exercise 7.8: phi*(O_k,F) Upsilon(k) phi(O_k,F), Upsilon base to tip down to body k.
+Mat6<double> operational_inverse_inertia(const Model& m, const State& x, int k, const Pose& frame) {
+  const Riccati r(m, x);
+  Mat6<double> U = Mat6<double>::Zero();  // Upsilon(j+1), then Upsilon(j)
+  for (int j = m.n(); j >= k; --j) {
+    const std::size_t i = std::size_t(j - 1);
+    const MatX Hs = H_star(m, x, j);
+    const Mat6<double> psi = j < m.n() ? psi_step(m, x, r.ws, r.art, j) : Mat6<double>::Zero();
+    U = psi.transpose() * U * psi + Hs * MatX(r.art.D_inv[i]) * Hs.transpose();
+  }
+  const Mat6<double> phi = Phi(frame).matrix();
+  return phi.transpose() * U * phi;
+}
+
+// Exercise 7.9: eta(k) = G*(k) V(k).
+VecX innovations_coordinates(const Model& m, const State& x) {
+  Riccati r(m, x);
+  update_velocities(m, x, r.ws);
+  VecX eta(m.nv());
+  for (int k = 1; k <= m.n(); ++k) {
+    const Body& B = m.body(k);
+    eta.segment(B.v_offset, B.hinge.nv()) =
+        r.art.G[std::size_t(k - 1)].transpose() * r.ws.V[std::size_t(k - 1)].vector();
+  }
+  return eta;
+}
+
+}  // namespace soa::ex07

@@ -1,9 +1,11 @@
 // Benchmarks of the forward dynamics (lesson 8) and of the mass matrix inverse (lesson 7) on
 // revolute chains: the O(N) articulated body algorithm against CRB + LDLT (O(N^3)), and the
-// O(N^2) inverse without forming the mass matrix, its exponent fitted (MassMatrixInverse_BigO).
+// O(N^2) inverse without forming the mass matrix, by the column sweep and by Upsilon (lesson 7,
+// section 7), their exponents fitted (MassMatrixInverse_BigO, MassMatrixInverseUpsilon_BigO).
 #include <Eigen/Cholesky>
 
 #include "bench_chain.hpp"
+#include "soa/chain/mass_matrix_inverse_upsilon.hpp"
 
 namespace {
 
@@ -59,6 +61,22 @@ void MassMatrixInverse(benchmark::State& state) {
   state.SetComplexityN(n);
 }
 
+// The O(N^2) mass matrix inverse built on Upsilon (lesson 7, section 7), kinematics included.
+void MassMatrixInverseUpsilon(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Chain c(n, false);
+  soa::Workspace ws(c.model);
+  soa::MassMatrixInverseUpsilon w(c.model);
+  soa::MatX<double> Minv(n, n);
+  for (auto _ : state) {
+    soa::update_phi(c.model, c.x.theta, ws);
+    soa::mass_matrix_inverse_upsilon(c.model, c.x, ws, w, Minv);
+    benchmark::DoNotOptimize(Minv.data());
+  }
+  state.counters["joints"] = n;
+  state.SetComplexityN(n);
+}
+
 }  // namespace
 
 BENCHMARK(ForwardDynamicsABA)
@@ -86,3 +104,5 @@ BENCHMARK(ForwardDynamicsCRB)
     ->Arg(200);
 BENCHMARK(MassMatrixInverse)->Arg(7)->Arg(1000);
 BENCHMARK(MassMatrixInverse)->RangeMultiplier(2)->Range(1, 1024)->Complexity();
+BENCHMARK(MassMatrixInverseUpsilon)->Arg(7)->Arg(1000);
+BENCHMARK(MassMatrixInverseUpsilon)->RangeMultiplier(2)->Range(1, 1024)->Complexity();

@@ -14,6 +14,7 @@
 #include "exercises.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
+#include "soa/chain/mass_matrix_inverse_upsilon.hpp"
 
 namespace {
 
@@ -169,6 +170,91 @@ TEST(Exercise7_5_LogDet, EqualsLogDetOfM) {
     w.add(std::abs(ld - std::log(c.M.determinant())) / (kEps * c.n6 * c.cond), i);
   }
   EXPECT_LE(w.value(), 4.0);
+}
+
+TEST(Exercise7_6_OmegaFromUpsilon, MatchesPhiHMinvHPhiAndLibrary) {
+  Random<double> rnd(706);
+  Worst lib("|Omega - library psi* H* D^-1 H psi| / (|Omega| eps 6n kappa)");
+  Worst dense("|Omega - phi* H* inv(M) H phi| / (|Omega| eps 6n cond(M))");
+  for (int i = 0; i < kCases; ++i) {
+    const Case c(rnd, i);
+    const MatX Omega = soa::ex07::omega_from_upsilon(c.m, c.x);
+    const MatX ref = c.io.Omega();
+    ASSERT_EQ(Omega.rows(), ref.rows());
+    ASSERT_EQ(Omega.cols(), ref.cols());
+    lib.add((Omega - ref).norm() / (at_least_1(ref.norm()) * c.unit()), i);
+    const MatX& phi = c.io.op.phi;
+    const MatX& H = c.io.op.H;
+    const MatX lhs = phi.transpose() * H.transpose() * c.M.inverse() * H * phi;
+    dense.add((Omega - lhs).norm() / (at_least_1(ref.norm()) * kEps * c.n6 * c.cond), i);
+  }
+  EXPECT_LE(lib.value(), 4.0);
+  EXPECT_LE(dense.value(), 4.0);
+}
+
+TEST(Exercise7_7_MinvFromUpsilon, MatchesLibraryAndDenseInverse) {
+  Random<double> rnd(707);
+  Worst lib("|Minv - mass_matrix_inverse_upsilon| / (|Minv| eps n cond(M))");
+  Worst dense("|Minv - inv(M)| / (|inv(M)| eps n cond(M))");
+  for (int i = 0; i < kCases; ++i) {
+    const Case c(rnd, i);
+    const MatX Minv = soa::ex07::minv_from_upsilon(c.m, c.x);
+    ASSERT_EQ(Minv.rows(), c.m.nv());
+    ASSERT_EQ(Minv.cols(), c.m.nv());
+    soa::Workspace ws(c.m);
+    soa::update_phi(c.m, c.x.theta, ws);
+    soa::MassMatrixInverseUpsilon w(c.m);
+    MatX ref;
+    soa::mass_matrix_inverse_upsilon(c.m, c.x, ws, w, ref);
+    const double unit = kEps * c.m.nv() * c.cond;
+    lib.add((Minv - ref).norm() / (ref.norm() * unit), i);
+    const MatX inv = c.M.inverse();
+    dense.add((Minv - inv).norm() / (inv.norm() * unit), i);
+  }
+  EXPECT_LE(lib.value(), 4.0);
+  EXPECT_LE(dense.value(), 4.0);
+}
+
+TEST(Exercise7_8_OperationalInverseInertia, MatchesDenseJMinvJStar) {
+  Random<double> rnd(708);
+  Worst w("|J M^-1 J* - dense| / (|J M^-1 J*| eps 6n cond(M))");
+  for (int i = 0; i < kCases; ++i) {
+    const Case c(rnd, i);
+    const int k = 1 + int(rnd.engine()() % unsigned(c.m.n()));
+    const soa::Pose frame(rnd.rotation(), rnd.vec3());
+    soa::Workspace ws(c.m);
+    soa::update_phi(c.m, c.x.theta, ws);
+    soa::update_poses(c.m, ws);
+    Eigen::Matrix<double, 6, Eigen::Dynamic> J;
+    soa::jacobian(c.m, c.x.theta, ws, k, frame, J);
+    const MatX ref = J * c.M.inverse() * J.transpose();
+    const MatX got = soa::ex07::operational_inverse_inertia(c.m, c.x, k, frame);
+    w.add((got - ref).norm() / (at_least_1(ref.norm()) * kEps * c.n6 * c.cond), i);
+  }
+  EXPECT_LE(w.value(), 4.0);
+}
+
+TEST(Exercise7_9_InnovationsCoordinates, DecoupleKineticEnergy) {
+  Random<double> rnd(709);
+  Worst energy("|1/2 eta* D eta - 1/2 beta* M beta| / (eps 6n kappa |terms|)");
+  Worst lib("|eta - [I + H phi K]* beta| / (eps 6n kappa |terms|)");
+  for (int i = 0; i < kCases; ++i) {
+    Case c(rnd, i);
+    c.x.beta = soa::test::random_vector(rnd, c.m.nv());
+    const VecX eta = soa::ex07::innovations_coordinates(c.m, c.x);
+    ASSERT_EQ(eta.size(), c.m.nv());
+    const VecX& beta = c.x.beta;
+    const double T = 0.5 * beta.dot(c.M * beta), Te = 0.5 * eta.dot(c.io.D * eta);
+    energy.add(
+        std::abs(T - Te) / (c.unit() * at_least_1(std::max(c.M.norm() * beta.squaredNorm(),
+                                                           c.io.D.norm() * eta.squaredNorm()))),
+        i);
+    const MatX L = c.io.factor();
+    lib.add((eta - L.transpose() * beta).norm() / (c.unit() * at_least_1(L.norm() * beta.norm())),
+            i);
+  }
+  EXPECT_LE(energy.value(), 4.0);
+  EXPECT_LE(lib.value(), 4.0);
 }
 
 }  // namespace

@@ -328,6 +328,55 @@ TEST(cli_robustness, NamesWithCommasQuotesAndLineBreaksSurviveTheCsv) {
   EXPECT_EQ(json::parse(r.out)["columns"], json(names));
 }
 
+// --- mass-matrix --operational (lesson 7, section 8) ---------------------------------------
+
+/// The rows of a JSON array of arrays as a matrix.
+std::vector<std::vector<double>> matrix_of(const json& rows) {
+  std::vector<std::vector<double>> a;
+  for (const json& r : rows) a.push_back(r.get<std::vector<double>>());
+  return a;
+}
+
+TEST(cli_robustness, OperationalInverseInertiaIsJMinvJStarOfTheVerbsOutputs) {
+  // For every body of the arm (the locked gripper too) and of every_hinge.json: Lambda_inv of
+  // --operational against J (soa jacobian --body) times Minv (soa mass-matrix --inverse)
+  // times J*, all three read back from the JSON, and its own dense_residual (--check).
+  Scratch s;
+  for (const std::string& scene : {scene_path("arm7.json"), test_scene("every_hinge.json")}) {
+    const Outcome mi = soa(s, {"mass-matrix", scene, "--inverse"});
+    ASSERT_EQ(mi.rc, 0) << mi.err;
+    const auto Minv = matrix_of(json::parse(mi.out)["Minv"]);
+    const std::size_t nv = Minv.size();
+    const Outcome kin = soa(s, {"kinematics", scene});
+    ASSERT_EQ(kin.rc, 0) << kin.err;
+    for (const auto& body : json::parse(kin.out)["bodies"].items()) {
+      const Outcome jac = soa(s, {"jacobian", scene, "--body", body.key()});
+      ASSERT_EQ(jac.rc, 0) << jac.err;
+      const auto J = matrix_of(json::parse(jac.out)["J"]);
+      const Outcome op = soa(s, {"mass-matrix", scene, "--operational", body.key(), "--check"});
+      ASSERT_EQ(op.rc, 0) << op.err;
+      const json o = json::parse(op.out)["operational"];
+      EXPECT_EQ(o["body"], body.key());
+      EXPECT_LT(o["dense_residual"].get<double>(), 1e-12) << body.key();
+      const auto L = matrix_of(o["Lambda_inv"]);
+      ASSERT_EQ(L.size(), 6u);
+      double scale = 0, diff = 0;
+      for (int r = 0; r < 6; ++r) {
+        ASSERT_EQ(L[r].size(), 6u);
+        for (int c = 0; c < 6; ++c) {
+          double ref = 0;  // (J Minv J*)(r, c)
+          for (std::size_t i = 0; i < nv; ++i)
+            for (std::size_t j = 0; j < nv; ++j) ref += J[r][i] * Minv[i][j] * J[c][j];
+          scale = std::max(scale, std::abs(ref));
+          diff = std::max(diff, std::abs(L[r][c] - ref));
+        }
+      }
+      // The JSON's 17 significant digits and M^-1 to about cond(M) eps: 1e-10 relative.
+      EXPECT_LT(diff, 1e-10 * scale) << scene << " " << body.key();
+    }
+  }
+}
+
 TEST(cli_robustness, FileNamesThatAreNotUtf8GiveValidJson) {
   Scratch s;
   const std::string scene = s / "sc\xff\xfe.json";
@@ -446,14 +495,14 @@ TEST(cli_robustness, InputsThatAreNotSceneFilesAreRefusedPromptly) {
 TEST(cli_robustness, EachVerbsHelpListsOnlyItsOptions) {
   Scratch s;
   const std::vector<std::string> options = {
-      "--q",          "--qd", "--qdd", "--tau",   "--body", "--inverse", "--check",
-      "--integrator", "--dt", "--tol", "--t-end", "--out",  "--every",   "--out-dt"};
+      "--q",  "--qd",  "--qdd",   "--tau", "--body",  "--inverse", "--check",      "--integrator",
+      "--dt", "--tol", "--t-end", "--out", "--every", "--out-dt",  "--operational"};
   const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
       {"kinematics", {"--q", "--qd", "--qdd", "--body"}},
       {"jacobian", {"--q", "--body"}},
       {"inverse-dynamics", {"--q", "--qd", "--qdd"}},
       {"forward-dynamics", {"--q", "--qd", "--tau", "--check"}},
-      {"mass-matrix", {"--q", "--inverse", "--check"}},
+      {"mass-matrix", {"--q", "--inverse", "--operational", "--check"}},
       {"simulate",
        {"--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--out", "--every",
         "--out-dt"}}};

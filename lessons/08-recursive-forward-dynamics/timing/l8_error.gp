@@ -20,12 +20,16 @@ plot file using 3:(g('ABA', 'double', 5)) with linespoints lw 2 pt 7 lc 1 title 
      file using 3:(g('CRB+LDLT', 'double', 5)) with linespoints lw 2 pt 5 lc 2 title 'CRB + LDLT, double', \
      file using 3:(g('CRB+LDLT', 'float', 5)) with linespoints lw 2 pt 4 dt 2 lc 2 title 'CRB + LDLT, float', \
      file using 3:(g('Minv', 'double', 5)) with linespoints lw 2 pt 9 lc 3 title 'M^{-1}(T - C), double', \
-     file using 3:(g('Minv', 'float', 5)) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float'
+     file using 3:(g('Minv', 'float', 5)) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float', \
+     file using 3:(g('MinvUpsilon', 'double', 5)) with linespoints lw 2 pt 11 lc 4 title 'M^{-1} by Upsilon, double', \
+     file using 3:(g('MinvUpsilon', 'float', 5)) with linespoints lw 2 pt 10 dt 2 lc 4 title 'M^{-1} by Upsilon, float'
 set title 'round trip |ID(FD(T)) - T| / |T| (ID in the same precision)'
 plot file using 3:(g('ABA', 'double', 6)) with linespoints lw 2 pt 7 lc 1 title 'ABA, double', \
      file using 3:(g('ABA', 'float', 6)) with linespoints lw 2 pt 6 dt 2 lc 1 title 'ABA, float', \
      file using 3:(g('CRB+LDLT', 'double', 6)) with linespoints lw 2 pt 5 lc 2 title 'CRB + LDLT, double', \
      file using 3:(g('CRB+LDLT', 'float', 6)) with linespoints lw 2 pt 4 dt 2 lc 2 title 'CRB + LDLT, float', \
      file using 3:(g('Minv', 'double', 6)) with linespoints lw 2 pt 9 lc 3 title 'M^{-1}(T - C), double', \
-     file using 3:(g('Minv', 'float', 6)) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float'
+     file using 3:(g('Minv', 'float', 6)) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float', \
+     file using 3:(g('MinvUpsilon', 'double', 6)) with linespoints lw 2 pt 11 lc 4 title 'M^{-1} by Upsilon, double', \
+     file using 3:(g('MinvUpsilon', 'float', 6)) with linespoints lw 2 pt 10 dt 2 lc 4 title 'M^{-1} by Upsilon, float'
 unset multiplot

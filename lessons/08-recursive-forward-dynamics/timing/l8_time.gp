@@ -1,5 +1,5 @@
 # Lesson 8 timing: time per forward dynamics call against N (log-log), the articulated body
-# algorithm, CRB + LDLT and M^-1 (T - C) in double and float, with the ABA / CRB + LDLT
+# algorithm, CRB + LDLT, M^-1 (T - C) and M^-1 by Upsilon (T - C) in double and float, with the ABA / CRB + LDLT
 # crossover N marked.
 # Usage: gnuplot -e "outdir='DIR'" l8_time.gp  (reads DIR/l8_work_precision.csv, DIR/l8_marks.gp)
 set terminal pngcairo size 860,600 enhanced font 'DejaVu Sans,12'
@@ -24,4 +24,6 @@ plot file using 3:(f('ABA', 'double')) with linespoints lw 2 pt 7 lc 1 title 'AB
      file using 3:(f('CRB+LDLT', 'double')) with linespoints lw 2 pt 5 lc 2 title 'CRB + LDLT, double', \
      file using 3:(f('CRB+LDLT', 'float')) with linespoints lw 2 pt 4 dt 2 lc 2 title 'CRB + LDLT, float', \
      file using 3:(f('Minv', 'double')) with linespoints lw 2 pt 9 lc 3 title 'M^{-1}(T - C), double', \
-     file using 3:(f('Minv', 'float')) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float'
+     file using 3:(f('Minv', 'float')) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float', \
+     file using 3:(f('MinvUpsilon', 'double')) with linespoints lw 2 pt 11 lc 4 title 'M^{-1} by Upsilon, double', \
+     file using 3:(f('MinvUpsilon', 'float')) with linespoints lw 2 pt 10 dt 2 lc 4 title 'M^{-1} by Upsilon, float'

@@ -22,4 +22,6 @@ plot file using 4:(h('ABA', 'double')) with linespoints lw 2 pt 7 lc 1 title 'AB
      file using 4:(h('CRB+LDLT', 'double')) with linespoints lw 2 pt 5 lc 2 title 'CRB + LDLT, double', \
      file using 4:(h('CRB+LDLT', 'float')) with linespoints lw 2 pt 4 dt 2 lc 2 title 'CRB + LDLT, float', \
      file using 4:(h('Minv', 'double')) with linespoints lw 2 pt 9 lc 3 title 'M^{-1}(T - C), double', \
-     file using 4:(h('Minv', 'float')) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float'
+     file using 4:(h('Minv', 'float')) with linespoints lw 2 pt 8 dt 2 lc 3 title 'M^{-1}(T - C), float', \
+     file using 4:(h('MinvUpsilon', 'double')) with linespoints lw 2 pt 11 lc 4 title 'M^{-1} by Upsilon, double', \
+     file using 4:(h('MinvUpsilon', 'float')) with linespoints lw 2 pt 10 dt 2 lc 4 title 'M^{-1} by Upsilon, float'

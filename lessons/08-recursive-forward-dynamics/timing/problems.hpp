@@ -1,7 +1,7 @@
 /// \file
 /// The problems of lesson 8's error-against-run-time report (issue 5): the benchmark chain of
 /// `make bench` and the extreme chains of lesson 6 with joint rates, built in double and cast
-/// to float and long double; the three ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$
+/// to float and long double; the four ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$
 /// and the errors of their results.
 #pragma once
 
@@ -13,6 +13,7 @@
 
 #include "report.hpp"
 #include "soa/chain.hpp"
+#include "soa/chain/mass_matrix_inverse_upsilon.hpp"
 #include "soa/soa.hpp"
 
 namespace soa::lesson::timing {
@@ -139,16 +140,21 @@ inline Problem<double> extreme_chain(const Spec& s) {
   return p;
 }
 
-/// The three ways of issue 5 to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$.
-enum class Method { ABA, CRB, Minv };
+/// The three ways of issue 5 to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$, and the
+/// fourth of issue 12: \f$\mathcal M^{-1}\f$ built on \f$\Upsilon\f$ (lesson 7, section 7).
+enum class Method { ABA, CRB, Minv, MinvUpsilon };
 inline const char* name(Method method) {
-  return method == Method::ABA ? "ABA" : method == Method::CRB ? "CRB+LDLT" : "Minv";
+  return method == Method::ABA           ? "ABA"
+         : method == Method::CRB         ? "CRB+LDLT"
+         : method == Method::MinvUpsilon ? "MinvUpsilon"
+                                         : "Minv";
 }
 
 /// A solver of one problem by one method, its workspace sized once (what the timing loop
 /// calls): soa::forward_dynamics() (O(n)); soa::inverse_dynamics() at \f$\dot\beta = 0\f$ for
 /// \f$\mathcal C\f$, soa::mass_matrix_crb() and Eigen's LDLT (O(n^3)); or \f$\mathcal C\f$,
-/// soa::mass_matrix_inverse() and \f$\mathcal M^{-1}(T - \mathcal C)\f$ (O(n^2)).
+/// soa::mass_matrix_inverse() and \f$\mathcal M^{-1}(T - \mathcal C)\f$ (O(n^2)); or the same
+/// with soa::mass_matrix_inverse_upsilon() (O(n^2)).
 template <class S>
 class Solver {
  public:
@@ -158,6 +164,7 @@ class Solver {
         ws_(p.m),
         fd_(method == Method::ABA ? p.m : soa::ModelT<S>()),
         w_(method == Method::Minv ? p.m : soa::ModelT<S>()),
+        wu_(method == Method::MinvUpsilon ? p.m : soa::ModelT<S>()),
         R_(method == Method::CRB ? std::size_t(p.m.n()) : 0),
         A_(method == Method::ABA ? 0 : p.m.nv(), method == Method::ABA ? 0 : p.m.nv()),
         C_(p.m.nv()),
@@ -184,9 +191,16 @@ class Solver {
         C_ = p.T - C_;
         beta_dot.noalias() = A_ * C_;
         break;
+      case Method::MinvUpsilon:
+        soa::inverse_dynamics(p.m, p.x, zero_, {}, ws_, C_);  // C, and phi for M^-1
+        soa::mass_matrix_inverse_upsilon(p.m, p.x, ws_, wu_, A_);
+        C_ = p.T - C_;
+        beta_dot.noalias() = A_ * C_;
+        break;
     }
   }
-  /// The matrix the method formed: \f$\mathcal M\f$ (CRB) or \f$\mathcal M^{-1}\f$ (Minv).
+  /// The matrix the method formed: \f$\mathcal M\f$ (CRB) or \f$\mathcal M^{-1}\f$ (Minv,
+  /// MinvUpsilon).
   const soa::MatX<S>& matrix() const { return A_; }
 
  private:
@@ -195,6 +209,7 @@ class Solver {
   soa::WorkspaceT<S> ws_;
   soa::ForwardDynamicsT<S> fd_;
   soa::MassMatrixInverseT<S> w_;
+  soa::MassMatrixInverseUpsilonT<S> wu_;
   std::vector<soa::SpatialInertiaT<S>> R_;
   soa::MatX<S> A_;
   soa::VecX<S> C_, zero_;

@@ -404,15 +404,15 @@ int main(int argc, char** argv) {
     auto set = std::make_shared<ProblemSet>(N);
     set->ref.resize(N);
     Solver<long double>(Method::ABA, set->l).solve(set->ref);
-    for (const Method method : {Method::ABA, Method::CRB, Method::Minv})
+    for (const Method method : {Method::ABA, Method::CRB, Method::Minv, Method::MinvUpsilon})
       for (const std::string precision : {"double", "float"}) {
         Row row;
         row.method = method;
         row.precision = precision;
         row.N = N;
-        const int limit = method == Method::CRB    ? cfg.crb_max
-                          : method == Method::Minv ? cfg.minv_max
-                                                   : N;
+        const int limit = method == Method::CRB                                     ? cfg.crb_max
+                          : method == Method::Minv || method == Method::MinvUpsilon ? cfg.minv_max
+                                                                                    : N;
         if (N > limit)
           row.note = "skipped: N > " + std::to_string(limit);
         else if (precision == "double")
@@ -441,15 +441,17 @@ int main(int argc, char** argv) {
         << ',' << num(r.forward_error) << ',' << num(r.roundtrip) << ',' << csv_field(r.note)
         << '\n';
   csv.close();
-  const Method methods[] = {Method::ABA, Method::CRB, Method::Minv};
+  const Method methods[] = {Method::ABA, Method::CRB, Method::Minv, Method::MinvUpsilon};
   std::ofstream times(out / "l8_times.md");
   times << "| N | ABA double | ABA double per joint | ABA float | CRB + LDLT double | "
-           "CRB + LDLT float | M^-1 (T - C) double | M^-1 (T - C) float |\n"
-        << "|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+           "CRB + LDLT float | M^-1 (T - C) double | M^-1 (T - C) float | "
+           "M^-1 by Upsilon double | M^-1 by Upsilon float |\n"
+        << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   std::ofstream errors(out / "l8_errors.md");
   errors << "| N | ABA double | ABA float | CRB + LDLT double | CRB + LDLT float | "
-            "M^-1 (T - C) double | M^-1 (T - C) float |\n"
-         << "|---:|---:|---:|---:|---:|---:|---:|\n";
+            "M^-1 (T - C) double | M^-1 (T - C) float | M^-1 by Upsilon double | "
+            "M^-1 by Upsilon float |\n"
+         << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const int N : cfg.Ns) {
     times << "| " << N;
     errors << "| " << N;
@@ -538,7 +540,7 @@ int main(int argc, char** argv) {
             << (r && !std::isnan(r->forward_error)
                     ? num(r->forward_error, "%.1e") + " (" + num(r->roundtrip, "%.0e") + ")"
                     : std::string(r && refused_note(*r) ? "refused" : "-"))
-            << (m == Method::Minv && precision == "float" ? "." : ";");
+            << (m == Method::MinvUpsilon && precision == "float" ? "." : ";");
       }
     for (const Row& r : rows)
       if (r.N == N_big && refused_note(r))
@@ -615,7 +617,7 @@ int main(int argc, char** argv) {
     const Extreme& e = extremes.back();
     std::printf("  %-28s cond %9s  kappa_D %9s", s.name.c_str(), num(e.cond, "%.1e").c_str(),
                 num(e.kappa_D, "%.1e").c_str());
-    for (const Method m : methods) {
+    for (const Method m : {Method::ABA, Method::CRB, Method::Minv}) {  // Extreme::result[3]
       const Extreme::Result& r = e.result[int(m)];
       if (!r.run) continue;
       std::printf("  %s %s", name(m),

@@ -84,6 +84,21 @@ struct InnovationsOperatorsT {
     const MatX<S> Li = factor_inverse();
     return Li.transpose() * D_inv * Li;
   }
+  /// \f$\Omega = \psi^* H^* D^{-1} H \psi\f$ (6n x 6n, lesson 7, section 6), which equals
+  /// \f$\phi^* H^* \mathcal M^{-1} H \phi\f$.
+  MatX<S> Omega() const { return psi.transpose() * op.H.transpose() * D_inv * op.H * psi; }
+  /// \f$\Upsilon = \mathrm{diag}(\Upsilon(k))\f$: the diagonal 6x6 blocks of Omega(), so
+  /// that \f$\Omega = \Upsilon + \tilde\psi^*\Upsilon + \Upsilon\tilde\psi\f$ (lesson 7,
+  /// section 6).
+  MatX<S> Upsilon() const {
+    const MatX<S> W = Omega();
+    MatX<S> U = MatX<S>::Zero(W.rows(), W.cols());
+    for (Eigen::Index r = 0; r < W.rows(); r += 6) U.block(r, r, 6, 6) = W.block(r, r, 6, 6);
+    return U;
+  }
+  /// The innovations coordinates \f$\eta = [I + H\phi K]^*\beta\f$ (lesson 7, section 9),
+  /// with \f$\tfrac12\beta^*\mathcal M\beta = \tfrac12\eta^* D\eta\f$.
+  VecX<S> eta(const VecX<S>& beta) const { return factor().transpose() * beta; }
 };
 using InnovationsOperators = InnovationsOperatorsT<double>;
 
