@@ -36,4 +36,9 @@ VecX<double> gravity_torques(const Model& m, const VecX<double>& theta) {
   throw exercise::NotDone("4.6 gravity_torques");
 }
 
+MatX<double> coriolis_matrix_operators(const EnergyStructure& es) {
+  (void)es;
+  throw exercise::NotDone("4.7 coriolis_matrix_operators");
+}
+
 }  // namespace soa::ex04

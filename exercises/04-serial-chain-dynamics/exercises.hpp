@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "soa/chain.hpp"
+#include "soa/chain/energy_structure.hpp"
 #include "soa/soa.hpp"
 
 namespace soa::ex04 {
@@ -113,5 +114,19 @@ VecX<double> bias_operators(const Operators& op);
 /// \f${}^{C_k}g = R_k^*\, g\f$, \f$R_k\f$ = `ws.pose[k-1].R()`. The chain has no springs.
 /// Do not call soa::inverse_dynamics or soa::OperatorsT.
 VecX<double> gravity_torques(const Model& m, const VecX<double>& theta);
+
+/// **Exercise 4.7: the Coriolis matrix from the operators.**
+/// \p es holds, at one state of a chain (soa::EnergyStructureT, lesson 4, section 11), the
+/// operators `es.op` (\f$\phi\f$ = `es.op.phi`, \f$H\f$ = `es.op.H`, \f$M\f$ = `es.op.M`),
+/// `es.Delta_bar` \f$= \bar\Delta_V = \mathrm{diag}(\bar\Delta_V(k))\f$, `es.H_dot`
+/// \f$= \dot H\f$ (nv x 6n, the transpose of \f$\dot H^*\f$) and `es.h_breve`
+/// \f$= \breve h = \mathrm{diag}(\breve h(k))\f$ with \f$h(k) = M(k)V(k)\f$. Return
+/// \f[ \mathcal C_v = B^*\bigl(M\dot B + \breve h B\bigr), \qquad B = \phi^* H^*, \qquad
+///     \dot B = \dot\phi^* H^* + \phi^*\dot H^*, \qquad \dot\phi = \tilde\phi\,\bar\Delta_V\,
+///     \phi, \quad \tilde\phi = \phi - I, \f]
+/// the Coriolis matrix with \f$\mathcal C_v\beta = \mathcal C(\theta,\beta) -
+/// \mathcal C(\theta,0)\f$ and \f$\dot{\mathcal M} - 2\,\mathcal C_v\f$ skew-symmetric. Do not
+/// call `es.coriolis_matrix()`, `es.B_dot()`, `es.phi_dot()` or `es.mass_matrix_rate()`.
+MatX<double> coriolis_matrix_operators(const EnergyStructure& es);
 
 }  // namespace soa::ex04

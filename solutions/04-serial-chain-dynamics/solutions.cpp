@@ -113,4 +113,16 @@ VecX<double> gravity_torques(const Model& m, const VecX<double>& theta) {
   return G;
 }
 
+// 4.7: C_v = B*(M B_dot + h_breve B), B_dot = phi_dot* H* + phi* H_dot*,
+// phi_dot = (phi - I) Delta_bar phi.
+MatX<double> coriolis_matrix_operators(const EnergyStructure& es) {
+  const MatX<double>& phi = es.op.phi;
+  const MatX<double> phi_tilde = phi - MatX<double>::Identity(phi.rows(), phi.cols());
+  const MatX<double> phi_dot = phi_tilde * es.Delta_bar * phi;
+  const MatX<double> B = phi.transpose() * es.op.H.transpose();
+  const MatX<double> B_dot =
+      phi_dot.transpose() * es.op.H.transpose() + phi.transpose() * es.H_dot.transpose();
+  return B.transpose() * (es.op.M * B_dot + es.h_breve * B);
+}
+
 }  // namespace soa::ex04

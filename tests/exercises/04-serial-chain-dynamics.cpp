@@ -189,3 +189,30 @@ TEST(Exercise4_6_GravityTorques, MatchesInverseDynamics) {
   }
   EXPECT_LE(w_G.value(), 64 * kEps);
 }
+
+// 4.7: the Coriolis matrix from the operators, against soa::EnergyStructureT::coriolis_matrix()
+// and, independently, C_v beta against the O(N) inverse dynamics at beta_dot = 0 without
+// gravity. Rounding scales with the terms |B|^2 (|M| |Delta_bar| |phi| + |h_breve|).
+TEST(Exercise4_7_CoriolisMatrixOperators, MatchesLibraryAndInverseDynamics) {
+  Random<double> rnd;
+  Worst w_C("C_v residual / terms"), w_Cb("C_v beta residual / (terms |beta|)");
+  for (int i = 0; i < kCases; ++i) {
+    const soa::Model m = soa::test::random_chain(rnd, bodies(i));
+    const soa::State x = soa::test::random_state(rnd, m);
+    const soa::EnergyStructure es = soa::EnergyStructure::build(m, x);
+    const MatX C = soa::ex04::coriolis_matrix_operators(es);
+    ASSERT_EQ(C.rows(), m.nv());
+    ASSERT_EQ(C.cols(), m.nv());
+    const MatX B = es.B();
+    const double terms = std::max(
+        1e-300, B.squaredNorm() * (es.op.M.norm() * es.Delta_bar.norm() * es.op.phi.norm() +
+                                   es.op.M.norm() * es.H_dot.norm() / std::max(1e-300, B.norm()) +
+                                   es.h_breve.norm()));
+    w_C.add((C - es.coriolis_matrix()).norm() / terms, i);
+    soa::Workspace ws(m);
+    const VecX C0 = library_T(m, x, VecX::Zero(m.nv()), {}, ws);
+    w_Cb.add((C * x.beta - C0).norm() / (terms * x.beta.norm()), i);
+  }
+  EXPECT_LE(w_C.value(), 64 * kEps);
+  EXPECT_LE(w_Cb.value(), 64 * kEps);
+}
