@@ -26,4 +26,9 @@ FreeBodyState rk4_torque_free(const SpatialInertia& M, const FreeBodyState& x0, 
   throw exercise::NotDone("2.4 rk4_torque_free");
 }
 
+Force body_frame_force(const SpatialInertia& M, const Velocity& V, const Acceleration& V_dot) {
+  (void)M, (void)V, (void)V_dot;
+  throw exercise::NotDone("2.5 body_frame_force");
+}
+
 }  // namespace soa::ex02

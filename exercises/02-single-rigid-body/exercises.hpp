@@ -80,4 +80,19 @@ FreeBodyRateT<double> body_rates(const SpatialInertia& M, const FreeBodyState& x
 /// likewise. Reproduces soa::rk4_step (which you must not call).
 FreeBodyState rk4_torque_free(const SpatialInertia& M, const FreeBodyState& x0, double h);
 
+/// **Exercise 2.5: the equations of motion in body coordinates.**
+/// A body with spatial inertia \p M \f$= M(x)\f$ about its point x moves with
+/// \p V \f$= V(x) = [\omega; v]\f$, both in body coordinates, and \p V_dot
+/// \f$= \dot V = [\dot\omega; \dot v]\f$ holds the rates of those body-frame components (the
+/// derivative in the body frame, what a simulation integrates). Return the spatial force at x
+/// in the body-frame form of lesson 2, section 4:
+/// \f[ f(x) = M(x)\,\dot V + \bar V\, M(x)\, V, \qquad
+///     \bar V = \begin{pmatrix} \tilde\omega & \tilde v \\ 0 & \tilde\omega \end{pmatrix}
+///     = -\tilde V^* , \f]
+/// the force cross product of slide 55 acting on the momentum \f$h(x) = M(x)\,V\f$. Form
+/// \f$\bar V\f$ from its blocks yourself (do not call soa::cross_bar), and do not call
+/// soa::rigid_body_force: the test compares your force with
+/// \f$M(x)\,\alpha(x) + b(x)\f$ at \f$\alpha(x) = [\dot\omega;\ \dot v + \omega \times v]\f$.
+Force body_frame_force(const SpatialInertia& M, const Velocity& V, const Acceleration& V_dot);
+
 }  // namespace soa::ex02

@@ -12,6 +12,22 @@
 /// x with \f$\phi(x, C)\f$, and check every step on numbers. Then we simulate a free body with
 /// its frame away from C: the Dzhanibekov (intermediate-axis) flip, the invariants that the
 /// simulation must keep, and the order of the Lie-group Runge-Kutta method that integrates it.
+///
+/// Learning goals. After this lesson you can
+/// - write Newton's and Euler's equations at the centre of mass C in spatial form,
+///   \f$f(C) = M(C)\alpha(C) + b(C)\f$, and say why only C decouples them;
+/// - move the velocity, the acceleration (with its centripetal term), the force and the
+///   inertia from C to any body point x with \f$\phi(x, C)\f$;
+/// - derive the gyroscopic term
+///   \f$b(x) = [\tilde\omega J(x)\omega;\ m\tilde\omega\tilde\omega p(x)]\f$ and the
+///   body-frame form \f$f = M\dot V + \bar V M V\f$;
+/// - state the rates of a free body (quaternion, position, velocity) and integrate them with a
+///   Lie-group Runge-Kutta method that keeps \f$|\mathfrak q| = 1\f$;
+/// - check a simulation by what it must conserve (energy, momentum about O) and by its
+///   measured order of convergence.
+///
+/// Run it as `lesson02 OUTDIR`: it prints each check and writes `OUTDIR/l2_energy_error.csv`,
+/// `OUTDIR/l2_flip.csv` and the figures `l2_energy_error.png` and `l2_flip.png`.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -291,8 +307,10 @@ int main(int argc, char** argv) {
   /// for \f$\omega\f$ that is \f$\omega\times\omega = 0\f$, so
   /// \f[ \alpha(x) = \begin{pmatrix} \dot\omega \\ \dot v + \omega \times v \end{pmatrix}. \f]
   /// Substituted in \f$f = M\alpha + b\f$ this gives the body-frame form with the spatial cross
-  /// product of slide 55, \f$f(x) = M(x)\,\dot V + \bar V(x)\,M(x)\,V(x)\f$ (its check is an
-  /// exercise in the Jacobi identity; here it is a check on numbers).
+  /// product of slide 55, \f$f(x) = M(x)\,\dot V + \bar V(x)\,M(x)\,V(x)\f$, where
+  /// \f$\bar V = -\tilde V^* = \begin{pmatrix} \tilde\omega & \tilde v \\ 0 & \tilde\omega
+  /// \end{pmatrix}\f$ acts on the momentum \f$M(x)V(x)\f$. Here it is checked on numbers;
+  /// exercise 2.5 (`soa::ex02::body_frame_force`) computes it from the blocks of \f$\bar V\f$.
   checks.section("4. The same law in body coordinates");
   const Acceleration V_dot_body(alpha_x.angular(), Vec3(alpha_x.linear()) - w.cross(v0));
   const Force f_body = M_x * V_dot_body + soa::cross_bar(V_x, M_x * V_x);
@@ -453,8 +471,10 @@ int main(int argc, char** argv) {
   /// \f$\max_{t \le t_1} |E(t) - E(t_1)|/E(0)\f$ with \f$t_1 = 3\f$ s, after that flip; its
   /// slope must lie in [3.5, 4.5]. What is left between flips, and builds up flip after flip,
   /// falls like \f$h^5\f$ (the error at the end of the run: slope in [4.5, 5.5]). At these
-  /// steps the accumulated part dominates the largest error over the run, which falls some
-  /// 23-28 times per halving (slope in [3.5, 5.5]), tending to 16 only at smaller steps.
+  /// steps the accumulated part dominates the largest error over the run: it falls between
+  /// \f$2^4 = 16\f$ and \f$2^5 = 32\f$ times per halving (slope in [3.5, 5.5]; the ratios are
+  /// printed below and checked), the ratio shrinking with h as the \f$h^4\f$ part of the flips
+  /// takes over.
   checks.section("8. The order of the method");
   const std::vector<double> hs = {0.04, 0.02, 0.01, 0.005};
   std::vector<Run> runs;
@@ -494,13 +514,27 @@ int main(int argc, char** argv) {
   order_check("the energy excursion in the flip", e_flip, 3.5, 4.5);
   order_check("the energy error at T", e_end, 4.5, 5.5);
   order_check("the largest energy error", e_energy, 3.5, 5.5);
+  bool ratios_in = true, ratios_shrink = true;
+  for (std::size_t i = 1; i < hs.size(); ++i) {
+    const double r = e_energy[i - 1] / e_energy[i];
+    ratios_in = ratios_in && r >= 16 && r <= 32;
+    if (i > 1) ratios_shrink = ratios_shrink && r < e_energy[i - 2] / e_energy[i - 1];
+  }
+  checks.check("largest energy error: each e(2h)/e(h) in [16, 32]", ratios_in);
+  checks.check("largest energy error: e(2h)/e(h) shrinks with h", ratios_shrink);
 
   /// ## 9. Figures
   ///
   /// `l2_energy_error.csv`: the relative energy error \f$(E(t) - E(0))/E(0)\f$ of the x run for
   /// each step size, sampled every 0.04 s; `l2_energy_error.png` plots its magnitude on a log
   /// scale: a staircase that steps up at each flip, with a spike during the flip, the curves
-  /// some 20-30 times apart.
+  /// of successive step sizes between 16 and 32 times apart. The program checks these three
+  /// statements on the data it writes: with the flips at the sign changes of \f$\omega_2\f$
+  /// (section 7), the error at the midpoints between flips grows from one to the next for every
+  /// h; the largest error within 0.5 s of each flip exceeds the error at the next midpoint; and
+  /// the ratio of the curves of h and h/2, at every sample after t = 1 s, lies between
+  /// \f$2^4\f$ and \f$2^5\f$ (checked in [16, 32.5]: the accumulated \f$h^5\f$ part brings it
+  /// close to 32; the range met is printed).
   ///
   /// \image html l2_energy_error.png "Energy error of the Lie-group RK4, body about x" width=600px
   ///
@@ -540,6 +574,43 @@ int main(int argc, char** argv) {
       csv << line;
     }
     checks.check("l2_flip.csv written", bool(csv));
+  }
+  {
+    // The flip times (sign changes of w_2 on the h_ref run) and the midpoints between them.
+    std::vector<double> t_flip;
+    for (std::size_t k = 1; k < run_x.x.size(); ++k)
+      if ((run_x.x[k - 1].V.angular()[1] > 0) != (run_x.x[k].V.angular()[1] > 0))
+        t_flip.push_back(run_x.t(k));
+    std::vector<double> t_mid;
+    for (std::size_t i = 0; i < t_flip.size(); ++i)
+      t_mid.push_back(i + 1 < t_flip.size() ? (t_flip[i] + t_flip[i + 1]) / 2 : T);
+    const auto dE = [&](std::size_t i, double t) {
+      const auto k = std::min(std::size_t(std::lround(t / hs[i])), runs[i].x.size() - 1);
+      return std::abs(soa::kinetic_energy(body_x, runs[i].x[k]) - E0) / E0;
+    };
+    bool staircase = true, spikes = true;
+    for (std::size_t i = 0; i < hs.size(); ++i) {
+      for (std::size_t j = 1; j < t_mid.size(); ++j)
+        staircase = staircase && dE(i, t_mid[j]) > dE(i, t_mid[j - 1]);
+      for (std::size_t j = 0; j < t_flip.size(); ++j) {
+        double peak = 0;
+        for (double t = std::max(0.0, t_flip[j] - 0.5); t <= t_flip[j] + 0.5; t += hs[i])
+          peak = std::max(peak, dE(i, t));
+        spikes = spikes && peak > dE(i, t_mid[j]);
+      }
+    }
+    double gap_lo = 1e300, gap_hi = 0;
+    for (std::size_t i = 1; i < hs.size(); ++i)
+      for (double t = 1.0; t <= T + hs[0] / 2; t += hs[0]) {
+        const double r = dE(i - 1, t) / dE(i, t);
+        gap_lo = std::min(gap_lo, r), gap_hi = std::max(gap_hi, r);
+      }
+    std::printf("  %zu flips; energy-error curves of h and h/2 are %.2f to %.2f times apart\n",
+                t_flip.size(), gap_lo, gap_hi);
+    checks.check("energy error steps up from one flip to the next, every h", staircase);
+    checks.check("energy error spikes during each flip, every h", spikes);
+    checks.check("curves of h and h/2 between 16 and 32.5 times apart (t >= 1 s)",
+                 gap_lo >= 16 && gap_hi <= 32.5);
   }
   checks.check("figure written: l2_energy_error.png",
                soa::lesson::plot("energy_error.gp", out, "l2_energy_error.png"));

@@ -5,8 +5,8 @@ set terminal pngcairo size 640,560 enhanced font 'DejaVu Sans,12'
 set output outdir.'/l5_arm7_mass_matrix.png'
 set datafile separator ','
 set title "7-joint arm: |M(i,j)| from the composite inertias (log scale)"
-set xlabel 'column j (hinge, tip = 1)'
-set ylabel 'row i (hinge, tip = 1)'
+set xlabel 'column j (degree of freedom, tip first)'
+set ylabel 'row i (degree of freedom, tip first)'
 set logscale cb
 set format cb '10^{%L}'
 set cblabel '|M(i,j)| [kg m^2]'

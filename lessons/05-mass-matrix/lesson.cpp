@@ -20,12 +20,14 @@
 /// - compute the hinge forces with composite bodies instead of the Newton–Euler gather.
 ///
 /// Run it as `lesson05 OUTDIR`: it prints each check and writes the 7-joint arm's mass
-/// matrix (`l5_arm7_mass_matrix.csv`) and its heat map (`l5_arm7_mass_matrix.png`).
+/// matrix (`l5_arm7_mass_matrix.csv`), its heat map (`l5_arm7_mass_matrix.png`), the ranking of
+/// its diagonal (`l5_arm7_diagonal.md`) and the operation counts (`l5_cost.md`).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,12 @@ using VecX = soa::VecX<double>;
 using MatX = soa::MatX<double>;
 
 const double kEps = soa::eps<double>();
+
+/// What the text of section 4 says about the 7-joint arm's mass matrix, checked there against
+/// the matrix the lesson computes and plots (rows 1-based, tip first).
+const std::vector<int> kCrossRows = {2, 4, 6};     // hinge axes across the arm (y)
+const std::vector<int> kLargestRows = {6, 4, 7};   // the three largest diagonal entries
+const std::vector<int> kLargestCoupling = {6, 4};  // the largest off-diagonal |M(i,j)|
 
 /// ## Helpers
 ///
@@ -281,23 +289,60 @@ int main(int argc, char** argv) {
   /// - the dense \f$H\phi M\phi^*H^*\f$: products of 6N x 6N matrices, \f$O((6N)^3)\f$
   ///   multiply-adds.
   /// Both recursive methods are \f$O(N^2)\f$, which is the size of the answer; the CRB
-  /// algorithm needs about a quarter of the work.
-  std::printf("\n  %6s %14s %14s %16s\n", "N", "CRB", "ID columns", "dense (6N)^3");
+  /// algorithm needs about a quarter of the work: the ratio of the counts,
+  /// \f$(N+1)(4N-1)/(N^2+2N-1)\f$, lies between 3 and 4 and tends to 4 (checked below for the
+  /// N printed). The program writes the counts to the table `l5_cost.md` of the lesson 5 page.
+  std::printf("\n  %6s %14s %14s %8s %16s\n", "N", "CRB", "ID columns", "ratio", "dense (6N)^3");
+  std::ofstream cost_md(out / "l5_cost.md");
+  cost_md << "| N | CRB (this lesson) | N + 1 inverse dynamics calls | ratio | dense (6N)^3 |\n"
+          << "|--:|--:|--:|--:|--:|\n";
+  bool quarter = true;
+  double last_ratio = 0;
   for (long N : {7L, 50L, 200L}) {
     const long crb = (N - 1) + N + N * (N - 1) / 2 + N * (N + 1) / 2;
     const long cols = (N + 1) * (N + N + (N - 1) + N);
-    std::printf("  %6ld %14ld %14ld %16ld\n", N, crb, cols, 6 * N * 6 * N * 6 * N);
+    const long dense = 6 * N * 6 * N * 6 * N;
+    const double ratio = double(cols) / double(crb);
+    quarter = quarter && crb == N * N + 2 * N - 1 && cols == (N + 1) * (4 * N - 1) && ratio > 3 &&
+              ratio < 4 && ratio > last_ratio;
+    last_ratio = ratio;
+    std::printf("  %6ld %14ld %14ld %8.2f %16ld\n", N, crb, cols, ratio, dense);
+    cost_md << "| " << N << " | " << crb << " | " << cols << " | " << std::fixed
+            << std::setprecision(2) << ratio << " | " << std::defaultfloat << dense << " |\n";
   }
+  cost_md.close();
+  checks.check("l5_cost.md written", bool(cost_md));
+  checks.check("CRB N^2 + 2N - 1, ID columns (N+1)(4N-1), ratio in (3, 4), growing", quarter);
 
   /// ## 4. The 7-joint arm, and a long chain
   ///
   /// The arm of lesson 3 (`arm7.json`, every joint at 0.3 rad): its mass matrix from the
-  /// composite inertias, as a heat map of \f$|\mathcal M(i,j)|\f$. The diagonal entries
-  /// \f$H(k)R(k)H^*(k)\f$ are the moments of inertia of the composite bodies about their
-  /// hinge axes: largest for the joints whose axes cross the arm (rows 6, 4 and 2, the y
-  /// axes), which swing everything outboard; a joint whose axis runs along the arm (the z
-  /// axes) sees only the small inertia about that line. Entries coupling a z joint with the
-  /// others are small for the same reason.
+  /// composite inertias, as a heat map of \f$|\mathcal M(i,j)|\f$. Row and column i belong to
+  /// the i-th degree of freedom counted from the tip: the gripper is welded to link7 (a locked
+  /// hinge, no degree of freedom), so row 1 is the joint of link7 and row 7 the base joint of
+  /// link1. The joints alternate: rows 2, 4 and 6 (`kCrossRows`) turn about the y axis of
+  /// their link, across the arm; rows 1, 3, 5 and 7 about its z axis, along the link (checked
+  /// on the hinge axes of the model).
+  ///
+  /// The diagonal entries \f$H(k)R(k)H^*(k)\f$ are the moments of inertia of the composite
+  /// bodies about their hinge axes. Two things order them: how much of the arm lies outboard,
+  /// which grows towards the base, and the lever arm of that mass about the axis. An axis
+  /// across the arm swings the outboard links at their full length; an axis along the link
+  /// sees only their distance from that line, which the bends of 0.3 rad create. So, as the
+  /// program checks on the matrix it plots:
+  /// - within each family the diagonal grows towards the base:
+  ///   \f$\mathcal M(2,2) < \mathcal M(4,4) < \mathcal M(6,6)\f$ and
+  ///   \f$\mathcal M(1,1) < \mathcal M(3,3) < \mathcal M(5,5) < \mathcal M(7,7)\f$;
+  /// - each cross joint outweighs the along joint just inboard of it, although that joint
+  ///   moves more of the arm: \f$\mathcal M(i,i) > \mathcal M(i+1,i+1)\f$ for i = 2, 4, 6;
+  /// - the three largest diagonal entries are rows 6, 4 and 7 (`kLargestRows`): the base
+  ///   joint, turning the whole bent arm, comes before the cross joint of row 2, which moves
+  ///   only link6, link7 and the gripper.
+  ///
+  /// The program prints the full ranking and writes it, with each row's link and axis, to the
+  /// table `l5_arm7_diagonal.md` of the lesson 5 page. The largest coupling
+  /// \f$|\mathcal M(i,j)|\f$, \f$i \ne j\f$, is between rows 6 and 4 (`kLargestCoupling`),
+  /// the two inboard cross joints: both swing the links outboard of row 4 across the arm.
   checks.section("4. the 7-joint arm and chain50");
   std::string error;
   const Model arm = scene("arm7", error);
@@ -313,6 +358,60 @@ int main(int argc, char** argv) {
     const Operators opa = Operators::build(arm, xa);
     checks.check("arm7: mass_matrix_crb = H phi M phi* H*", (Ma - opa.mass_matrix()).norm(),
                  16 * kEps * arm.n() * (opa.phi * opa.M * opa.phi.transpose()).norm());
+    // The row of each degree of freedom (1-based, tip first), its link and its hinge axis.
+    const int nv = arm.nv();
+    std::vector<std::string> link(static_cast<std::size_t>(nv) + 1), axis(link.size());
+    bool families = arm.nv() == 7;
+    for (int k = 1; k <= arm.n(); ++k) {
+      const Body& B = arm.body(k);
+      if (B.hinge.nv() == 0) continue;
+      const int row = B.v_offset + 1;
+      const bool cross = std::find(kCrossRows.begin(), kCrossRows.end(), row) != kCrossRows.end();
+      const Vec3 a = B.hinge.axis;
+      const bool is_y = std::abs(std::abs(a.y()) - 1) < 1e-12,
+                 is_z = std::abs(std::abs(a.z()) - 1) < 1e-12;
+      families = families && B.hinge.nv() == 1 && (cross ? is_y : is_z);
+      link[std::size_t(row)] = B.name;
+      axis[std::size_t(row)] = is_y ? "y (across)" : is_z ? "z (along)" : "other";
+    }
+    checks.check("arm7: rows 2, 4, 6 turn about y, rows 1, 3, 5, 7 about z (kCrossRows)", families);
+    const auto D = [&](int i) { return Ma(i - 1, i - 1); };
+    std::vector<int> rank(static_cast<std::size_t>(nv));
+    for (int i = 0; i < nv; ++i) rank[std::size_t(i)] = i + 1;
+    std::sort(rank.begin(), rank.end(), [&](int i, int j) { return D(i) > D(j); });
+    std::printf("  arm7 diagonal, largest first:");
+    for (const int i : rank)
+      std::printf("  row %d (%s) %.4f", i, link[std::size_t(i)].c_str(), D(i));
+    std::printf("\n");
+    bool grows = true, cross_wins = true;
+    if (nv == 7) {
+      for (const int i : {2, 4}) grows = grows && D(i) < D(i + 2);
+      for (const int i : {1, 3, 5}) grows = grows && D(i) < D(i + 2);
+      for (const int i : kCrossRows) cross_wins = cross_wins && D(i) > D(i + 1);
+    }
+    checks.check("arm7: diagonal grows towards the base within each family", nv == 7 && grows);
+    checks.check("arm7: M(i,i) > M(i+1,i+1) for the cross rows i = 2, 4, 6", nv == 7 && cross_wins);
+    checks.check("arm7: the three largest diagonal entries are rows 6, 4, 7 (kLargestRows)",
+                 nv == 7 && std::equal(kLargestRows.begin(), kLargestRows.end(), rank.begin()));
+    int ci = 0, cj = 0;
+    for (int i = 1; i <= nv; ++i)
+      for (int j = 1; j < i; ++j)
+        if (ci == 0 || std::abs(Ma(i - 1, j - 1)) > std::abs(Ma(ci - 1, cj - 1))) ci = i, cj = j;
+    std::printf("  arm7 largest coupling: |M(%d,%d)| = %.4f\n", ci, cj,
+                std::abs(Ma(ci - 1, cj - 1)));
+    checks.check("arm7: the largest coupling is M(6,4) (kLargestCoupling)",
+                 ci == kLargestCoupling[0] && cj == kLargestCoupling[1]);
+    std::ofstream md(out / "l5_arm7_diagonal.md");
+    md << "| rank | row | link | hinge axis | M(i,i) [kg m²] |\n|--:|--:|---|---|--:|\n";
+    for (std::size_t r = 0; r < rank.size(); ++r) {
+      char cell[160];
+      const int i = rank[r];
+      std::snprintf(cell, sizeof cell, "| %zu | %d | %s | %s | %.4f |\n", r + 1, i,
+                    link[std::size_t(i)].c_str(), axis[std::size_t(i)].c_str(), D(i));
+      md << cell;
+    }
+    md.close();
+    checks.check("l5_arm7_diagonal.md written", bool(md));
     std::ofstream csv(out / "l5_arm7_mass_matrix.csv");
     for (int i = 0; i < Ma.rows(); ++i)
       for (int j = 0; j < Ma.cols(); ++j)

@@ -69,4 +69,14 @@ FreeBodyState rk4_torque_free(const SpatialInertia& M, const FreeBodyState& x0, 
   return x1;
 }
 
+// 2.5: f(x) = M V_dot + V-bar M V, V-bar = [[w~, v~], [0, w~]] on h = M V = [h_w; h_v].
+Force body_frame_force(const SpatialInertia& M, const Velocity& V, const Acceleration& V_dot) {
+  const Vec3<double> w = V.angular(), v = V.linear();
+  const Vec6<double> h = M.matrix() * V.vector();
+  const Vec3<double> h_w = h.head<3>(), h_v = h.tail<3>();
+  const Vec6<double> f = M.matrix() * V_dot.vector();
+  return Force(Vec3<double>(f.head<3>() + w.cross(h_w) + v.cross(h_v)),
+               Vec3<double>(f.tail<3>() + w.cross(h_v)));
+}
+
 }  // namespace soa::ex02

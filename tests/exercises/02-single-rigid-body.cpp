@@ -117,3 +117,23 @@ TEST(Exercise2_4_Rk4Step, MatchesLibrary) {
   EXPECT_LE(w_V.value(), 64.0);
   EXPECT_LE(w_unit.value(), 4 * kEps);
 }
+
+// 2.5: the body-frame form f = M V_dot + V-bar M V, against soa::rigid_body_force at the
+// inertial derivative alpha = [w_dot; v_dot + w x v] (lesson 2, section 4).
+TEST(Exercise2_5_BodyFrameForce, MatchesLibrary) {
+  Random<double> rng;
+  Worst worst("f(x) residual / scale");
+  for (int i = 0; i < kCases; ++i) {
+    const soa::SpatialInertia M = rng.inertia();
+    const soa::Velocity V = rng.velocity();
+    const soa::Acceleration V_dot = rng.acceleration();
+    const V3 w = V.angular(), v = V.linear();
+    const soa::Acceleration alpha(V_dot.angular(), V3(V_dot.linear()) + w.cross(v));
+    const soa::Force f = soa::ex02::body_frame_force(M, V, V_dot);
+    const soa::Force ref = soa::rigid_body_force(M, V, alpha);
+    // The terms: M V_dot, and V-bar M V with |V-bar| <= |V| (w x v moves into alpha).
+    const double scale = M.matrix().norm() * (V_dot.vector().norm() + V.vector().squaredNorm());
+    worst.add((f - ref).vector().norm() / std::max(1.0, scale), i);
+  }
+  EXPECT_LE(worst.value(), 64 * kEps);
+}
