@@ -42,4 +42,9 @@ Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy) {
   throw exercise::NotDone("1.6 reverse_velocity");
 }
 
+Pose exp_twist(const Velocity& xi) {
+  (void)xi;
+  throw exercise::NotDone("1.7 exp_twist");
+}
+
 }  // namespace soa::ex01

@@ -101,4 +101,23 @@ double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x);
 /// Do not call Phi::transpose_apply(), Phi::inverse() or Phi::matrix().
 Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy);
 
+/// **Exercise 1.7 — The exponential of SE(3) (slide 63).**
+///
+/// Return the pose \f$\exp(\hat\xi) = (R, l)\f$ of the twist \f$\xi = [\omega; v]\f$,
+/// \f$\hat\xi = \begin{pmatrix} \tilde\omega & v \\ 0 & 0 \end{pmatrix}\f$, from its closed form
+/// (lesson 1, section "The Lie group connection: SE(3)"): with \f$\theta = |\omega|\f$,
+/// \f[ R = I + g_1\,\tilde\omega + g_2\,\tilde\omega^2, \qquad
+///     l = \big(I + g_2\,\tilde\omega + g_3\,\tilde\omega^2\big)\, v, \f]
+/// \f[ g_1 = \frac{\sin\theta}{\theta}, \quad g_2 = \frac{1 - \cos\theta}{\theta^2}, \quad
+///     g_3 = \frac{\theta - \sin\theta}{\theta^3} . \f]
+/// Derive it first: sum the series \f$\sum_k \hat\xi^k / k!\f$ block by block, using
+/// \f$\tilde\omega^3 = -\theta^2\tilde\omega\f$. Then make it accurate for every angle: the
+/// test includes \f$\theta\f$ down to \f$10^{-9}\f$ and \f$\theta = 0\f$, where the quotients
+/// above lose every digit or divide by zero; near zero use their Taylor series
+/// (\f$g_1 = 1 - \theta^2/6 + \dots\f$, \f$g_2 = 1/2 - \theta^2/24 + \dots\f$,
+/// \f$g_3 = 1/6 - \theta^2/120 + \dots\f$; how many terms, and below which \f$\theta\f$?).
+///
+/// Do not call soa::exp_se3(), soa::exp_so3(), soa::dexp_so3() or soa::g_series().
+Pose exp_twist(const Velocity& xi);
+
 }  // namespace soa::ex01

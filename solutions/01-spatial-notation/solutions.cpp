@@ -68,4 +68,25 @@ Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy) {
   return Velocity(-w_xy, -v_xy + w_xy.cross(phi_xy.l()));
 }
 
+// 1.7, slide 63: exp(xi^) = (I + g1 W + g2 W^2, (I + g2 W + g3 W^2) v), W = w~, since
+// W^3 = -theta^2 W folds the series. Below theta = 1e-2 the quotients cancel (g3 loses
+// about 2 log10(1/theta) digits): four terms of their series are exact to rounding there
+// (the next term is theta^8 / 10! < 1e-22).
+Pose exp_twist(const Velocity& xi) {
+  const Vec3<double> w = xi.angular();
+  const double t = w.norm(), t2 = t * t;
+  double g1, g2, g3;
+  if (t < 1e-2) {
+    g1 = 1 - t2 / 6 * (1 - t2 / 20 * (1 - t2 / 42));
+    g2 = 0.5 * (1 - t2 / 12 * (1 - t2 / 30 * (1 - t2 / 56)));
+    g3 = (1 - t2 / 20 * (1 - t2 / 42 * (1 - t2 / 72))) / 6;
+  } else {
+    g1 = std::sin(t) / t;
+    g2 = (1 - std::cos(t)) / t2;
+    g3 = (t - std::sin(t)) / (t2 * t);
+  }
+  const Mat3<double> W = tilde(w), W2 = W * W, I = Mat3<double>::Identity();
+  return Pose(I + g1 * W + g2 * W2, (I + g2 * W + g3 * W2) * Vec3<double>(xi.linear()));
+}
+
 }  // namespace soa::ex01

@@ -11,6 +11,7 @@
 #include "soa/pose.hpp"
 #include "soa/rigid_body.hpp"
 #include "soa/rotation.hpp"
+#include "soa/se3.hpp"
 #include "soa/sim.hpp"
 #include "soa/spatial_cross.hpp"
 #include "soa/spatial_inertia.hpp"

@@ -1,0 +1,31 @@
+# Precompiled headers for the check code (tests, exercise tests, lessons, exercises and
+# solutions): Eigen, the library and (for tests) GoogleTest are parsed once per build instead
+# of once per translation unit, about 4 CPU-seconds each (CI's cost: see tests/CMakeLists.txt).
+# Two headers, each built once by its own object library and reused (REUSE_FROM) by every
+# target of its kind; the reusing targets must compile with the same flags, which
+# SOA_CHECK_OPT and the directory-wide warnings give them (CMake adds -Winvalid-pch, which
+# says so if not).
+
+# The optimization of every check target: -O1 even in Release. They run for seconds, while
+# -O3 on Eigen-heavy test code doubles the build. The library, the `soa` command, the lesson
+# reports and the benchmarks keep the build type's flags.
+set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
+
+set(SOA_PCH_DIR ${CMAKE_CURRENT_LIST_DIR})
+# The library alone: lessons, exercises, solutions.
+add_library(soa_pch_plain OBJECT ${SOA_PCH_DIR}/pch_source.cpp)
+target_compile_options(soa_pch_plain PRIVATE ${SOA_CHECK_OPT})
+target_link_libraries(soa_pch_plain PRIVATE soa)
+target_precompile_headers(soa_pch_plain PRIVATE <Eigen/Dense> <Eigen/Eigenvalues> <soa/soa.hpp>)
+# GoogleTest and the library: the test executables and the exercise tests.
+add_library(soa_pch_test OBJECT ${SOA_PCH_DIR}/pch_source.cpp)
+target_compile_options(soa_pch_test PRIVATE ${SOA_CHECK_OPT})
+target_link_libraries(soa_pch_test PRIVATE soa GTest::gtest)
+target_precompile_headers(soa_pch_test PRIVATE <gtest/gtest.h> <Eigen/Dense> <Eigen/Eigenvalues>
+                          <soa/soa.hpp>)
+
+# soa_check_target(<target> plain|test): the check flags and the precompiled header.
+function(soa_check_target target kind)
+  target_compile_options(${target} PRIVATE ${SOA_CHECK_OPT})
+  target_precompile_headers(${target} REUSE_FROM soa_pch_${kind})
+endfunction()
