@@ -22,7 +22,7 @@
 
 namespace soa {
 
-/// The coefficients of the exponential's series, lesson 1 eq. (SE3-g):
+/// The coefficients of the exponential's series, lesson 1, "The Lie group connection: SE(3)":
 /// \f[ g_n(\theta) = \sum_{k \ge 0} \frac{(-1)^k\, \theta^{2k}}{(2k+n)!}, \qquad
 ///     g_0 = \cos\theta,\ g_1 = \frac{\sin\theta}{\theta},\ g_2 = \frac{1-\cos\theta}{\theta^2},
 ///     \ g_3 = \frac{\theta - \sin\theta}{\theta^3},\ \ldots,\quad
@@ -76,7 +76,7 @@ VelocityT<S> vee_se3(const Mat4<S>& m) {
 }
 
 /// \f$\mathrm{Ad}({}^x T_y) = \phi^*(y,x) = \begin{pmatrix} R & 0 \\ \tilde l R & R
-/// \end{pmatrix}\f$, the adjoint of SE(3) (slide 63; lesson 1 eq. (SE3-Ad)), defined by
+/// \end{pmatrix}\f$, the adjoint of SE(3) (slide 63; lesson 1, "The Lie group connection: SE(3)"), defined by
 /// \f$(T\hat\xi T^{-1})^\vee = \mathrm{Ad}(T)\,\xi\f$. For \f$T = {}^x T_y\f$ it takes a
 /// motion vector at y in y-coordinates to the same motion at x in x-coordinates. The 6x6 is
 /// for teaching and tests; Ad_apply() applies it without forming it.
@@ -89,7 +89,7 @@ Mat6<S> Ad(const PoseT<S>& T) {
   return m;
 }
 
-/// \f$\mathrm{Ad}(T)\,\xi = [R\omega;\ R v + l \times R\omega]\f$ (lesson 1 eq. (SE3-Ad)),
+/// \f$\mathrm{Ad}(T)\,\xi = [R\omega;\ R v + l \times R\omega]\f$ (lesson 1, "The Lie group connection: SE(3)"),
 /// equal to \f$\phi^*(y,x)\,\xi\f$ for \f$T = {}^x T_y\f$ (slide 63).
 template <class S, class K>
 SpatialVector<S, K> Ad_apply(const PoseT<S>& T, const SpatialVector<S, K>& xi) {
@@ -101,7 +101,7 @@ SpatialVector<S, K> Ad_apply(const PoseT<S>& T, const SpatialVector<S, K>& xi) {
 /// \f$\mathrm{ad}(\xi) = \tilde\xi = \begin{pmatrix} \tilde\omega & 0 \\ \tilde v &
 /// \tilde\omega \end{pmatrix}\f$: the Lie bracket of se(3),
 /// \f$\mathrm{ad}(X)\,Y = ([\hat X, \hat Y])^\vee\f$, is the spatial cross product of
-/// slide 53 (slide 63; lesson 1 eq. (SE3-ad)).
+/// slide 53 (slide 63; lesson 1, "The Lie group connection: SE(3)").
 template <class S, class K>
 Mat6<S> ad(const SpatialVector<S, K>& xi) {
   return tilde(xi);
@@ -110,7 +110,7 @@ Mat6<S> ad(const SpatialVector<S, K>& xi) {
 /// \f$\mathrm{dexp}_{SO(3)}(w) = I + g_2(\theta)\,\tilde w + g_3(\theta)\,\tilde w^2\f$,
 /// \f$\theta = |w|\f$: the left Jacobian of SO(3), \f$\dot R R^* =
 /// (\mathrm{dexp}_{SO(3)}(w)\,\dot w)^\sim\f$ for \f$R = \exp(\tilde w)\f$, and the matrix
-/// that carries \f$v\f$ into the offset of \f$\exp(\hat\xi)\f$ (lesson 1 eq. (SE3-exp)).
+/// that carries \f$v\f$ into the offset of \f$\exp(\hat\xi)\f$ (lesson 1, "The Lie group connection: SE(3)").
 template <class S>
 Mat3<S> dexp_so3(const Vec3<S>& w) {
   const S theta = w.norm();
@@ -120,8 +120,8 @@ Mat3<S> dexp_so3(const Vec3<S>& w) {
 
 /// \f$\mathrm{dexp}_{SO(3)}^{-1}(w) = I - \tfrac12\tilde w + D(\theta)\,\tilde w^2\f$ with
 /// \f$D = \frac{1}{\theta^2}\big(1 - \frac{\theta\sin\theta}{2(1-\cos\theta)}\big) =
-/// \frac{g_3 - 2 g_4}{2 g_2}\f$, the second form free of cancellation (lesson 1
-/// eq. (SE3-log)); valid for \f$\theta < 2\pi\f$.
+/// \frac{g_3 - 2 g_4}{2 g_2}\f$, the second form free of cancellation (lesson 1,
+/// "The Lie group connection: SE(3)"); valid for \f$\theta < 2\pi\f$.
 template <class S>
 Mat3<S> dexp_so3_inv(const Vec3<S>& w) {
   const S theta = w.norm();
@@ -131,7 +131,7 @@ Mat3<S> dexp_so3_inv(const Vec3<S>& w) {
 }
 
 /// \f$\exp(\hat\xi) = \begin{pmatrix} \exp(\tilde\omega) & \mathrm{dexp}_{SO(3)}(\omega)\, v
-/// \\ 0 & 1 \end{pmatrix}\f$, the exponential of SE(3) (slide 63; lesson 1 eq. (SE3-exp)),
+/// \\ 0 & 1 \end{pmatrix}\f$, the exponential of SE(3) (slide 63; lesson 1, "The Lie group connection: SE(3)"),
 /// exact to rounding down to \f$\theta = |\omega| = 0\f$ (exp_so3() and g_series()).
 template <class S, class K>
 PoseT<S> exp_se3(const SpatialVector<S, K>& xi) {
@@ -142,7 +142,7 @@ PoseT<S> exp_se3(const SpatialVector<S, K>& xi) {
 
 /// The logarithm of SE(3): the twist \f$\xi = [\omega; \mathrm{dexp}_{SO(3)}^{-1}(\omega)\, l]\f$
 /// with \f$\omega\f$ = log_so3(R), \f$\theta \in [0, \pi]\f$, and \f$\exp(\hat\xi) = T\f$
-/// (slide 63; lesson 1 eq. (SE3-log)). At \f$\theta \to 0\f$ and \f$\theta \to \pi\f$ it
+/// (slide 63; lesson 1, "The Lie group connection: SE(3)"). At \f$\theta \to 0\f$ and \f$\theta \to \pi\f$ it
 /// inherits log_so3()'s fallbacks; \f$\mathrm{dexp}^{-1}\f$ is regular on \f$[0, \pi]\f$
 /// (\f$D(\pi) = 1/\pi^2\f$).
 template <class S>
@@ -153,7 +153,7 @@ VelocityT<S> log_se3(const PoseT<S>& T) {
 
 /// \f$\mathrm{dexp}(\xi) = \sum_{k\ge0} \frac{\mathrm{ad}(\xi)^k}{(k+1)!} =
 /// \begin{pmatrix} J & 0 \\ Q & J \end{pmatrix}\f$, the left Jacobian of SE(3) (the
-/// derivative of the exponential, lesson 1 eq. (SE3-dexp); the book's appendix on Lie groups):
+/// derivative of the exponential, lesson 1, "The Lie group connection: SE(3)"; the book's appendix on Lie groups):
 /// \f[ \frac{d}{dt}\exp(\hat\xi)\;\exp(\hat\xi)^{-1} = \big(\mathrm{dexp}(\xi)\,\dot\xi\big)^\wedge,
 ///     \qquad J = \mathrm{dexp}_{SO(3)}(\omega), \f]
 /// \f[ Q = \tfrac12 \tilde v + g_3 (\tilde\omega\tilde v + \tilde v\tilde\omega +
