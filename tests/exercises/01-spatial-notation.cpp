@@ -302,6 +302,7 @@ TEST(Exercise1_7_ExpTwist, MatchesTheMatrixExponentialAtEveryAngle) {
   Random rnd(71);
   Worst worst("exp_twist vs the 4x4 exponential (long double)");
   Worst small("exp_twist at theta in [1e-9, 1e-2] vs the 4x4 exponential");
+  int named = 0;
   for (int i = 0; i < kCases; ++i) {
     const bool tiny = i % 2 == 1;
     const double theta = tiny ? std::pow(10.0, rnd.uniform(-9, -2)) : rnd.uniform(0, 3);
@@ -309,7 +310,7 @@ TEST(Exercise1_7_ExpTwist, MatchesTheMatrixExponentialAtEveryAngle) {
     const soa::Velocity xi((theta * n).eval(), rnd.vec3());
     const double r = pose_rel(soa::ex01::exp_twist(xi), expm_ld(xi));
     (tiny ? small : worst).add(r, i);
-    if (tiny && r > 64 * kEps)
+    if (tiny && r > 64 * kEps && ++named <= 3)  // the first three angles, not all of them
       ADD_FAILURE() << "exp_twist at theta = " << theta << ": relative error " << r
                     << " (a closed form (1 - cos)/theta^2 or (theta - sin)/theta^3 cancels there)";
   }

@@ -27,8 +27,10 @@ class Table : public testing::EmptyTestEventListener {
     if (!r.failed()) return;
     Row& row = rows_[current_];
     row.failed = true;
-    const std::string msg = r.message() ? r.message() : "";
+    std::string msg = r.message() ? r.message() : "";
     if (msg.find("not done") != std::string::npos) row.not_done = true;
+    // ADD_FAILURE() << text gives "Failed\ntext": the text is what names the mistake.
+    if (msg.rfind("Failed\n", 0) == 0) msg.erase(0, 7);
     if (row.first_failure.empty()) row.first_failure = msg.substr(0, msg.find('\n'));
   }
   void OnTestStart(const testing::TestInfo& info) override {
