@@ -1,7 +1,9 @@
 # SOA Course Companion — the commands students and instructors type.
 #   make run        build everything, run the lesson tour (outputs under build/course/)
 #   make test       library tests, lesson checks, exercise tests against the solutions
-#   make exercises  the exercise tests against exercises/ (a pass/fail table; never fails)
+#   make exercises  the exercise tests against exercises/ (a pass/fail table; never fails);
+#                   LESSON=4 or EX=4.2 for one lesson or one exercise, HINT=4.7 for the
+#                   exercise's next hint
 #   make docs       Doxygen course notes (offline math, gnuplot figures) in build/docs/html
 #   make bench      Google Benchmark results and the soa command's scale (cli_scale) in build/bench/
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug (in
@@ -25,7 +27,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax
 
-.PHONY: all run test exercises docs bench deps configure build clean format
+.PHONY: all run test exercises stub-sums docs bench deps configure build clean format
 
 all: build
 
@@ -44,16 +46,10 @@ deps:
 	  $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo $$line; \
 	fi
 
-# The untouched stubs are checked too (every exercise must fail on them) when exercises/
-# has no local changes in git; once a student edits an exercise, only `make exercises`
-# looks at it.
-CHECK_STUBS := $(shell git diff --quiet HEAD -- exercises 2>/dev/null && \
-  test -z "$$(git ls-files --others --exclude-standard exercises 2>/dev/null)" && echo ON || echo OFF)
-
 configure: deps
 	@mkdir -p build
 	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(SAN_FLAG) \
-	  -DSOA_CHECK_STUBS=$(CHECK_STUBS) -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(BUILD_DIR).cmake.log \
+	  -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(BUILD_DIR).cmake.log \
 	  || { cat $(BUILD_DIR).cmake.log; exit 1; }
 
 build: configure
@@ -65,17 +61,55 @@ run: build
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure --no-tests=error -j $(JOBS) $(if $(TESTS),-R '$(TESTS)')
 
-# One table per lesson: each exercise pass / FAIL / not done. Never stops the build.
-exercises: configure
-	@for src in tests/exercises/[0-9][0-9]-*.cpp; do \
-	  nn=$$(basename $$src | cut -c1-2); \
-	  echo; echo "== Lesson $$nn exercises ($$(ls -d exercises/$$nn-*)) =="; \
-	  if cmake --build $(BUILD_DIR) -j $(JOBS) --target ex$$nn-exercises \
-	       >$(BUILD_DIR)/ex$$nn-exercises.log 2>&1; then \
-	    $(BUILD_DIR)/tests/ex$$nn-exercises --report || echo "  the test program crashed"; \
-	  else echo "  does not compile yet: see $(BUILD_DIR)/ex$$nn-exercises.log"; \
-	       grep -m5 'error' $(BUILD_DIR)/ex$$nn-exercises.log | sed 's/^/    /'; fi; \
+# One table per lesson: each exercise pass / FAIL (with what went wrong) / not done. Never
+# stops the build. Its own build, build/exercises: the library (double only) and the exercise
+# tests, at -O1 -g with Eigen's assertions on; the student's code also with AddressSanitizer
+# + UBSan where the compiler has them, so that a mistake stops at the student's own line.
+EX_DIR := build/exercises
+EX_LESSON := $(if $(EX),$(word 1,$(subst ., ,$(EX))),$(LESSON))
+EX_NN := $(if $(EX_LESSON),$(shell printf '%02d' $(EX_LESSON)),)
+EX_FILTER := $(if $(EX),--gtest_filter=Exercise$(subst .,_,$(EX))_*,)
+EX_SRCS := $(sort $(wildcard tests/exercises/$(if $(EX_NN),$(EX_NN),[0-9][0-9])-*.cpp))
+EX_NNS := $(foreach f,$(EX_SRCS),$(shell basename $(f) | cut -c1-2))
+
+exercises: deps
+ifneq ($(HINT),)
+	@sh tests/exercises/hint.sh $(HINT) $(EX_DIR)/hints
+else
+	@test -n "$(EX_NNS)" || { echo "no lesson $(EX_LESSON): lessons are 1 to 8"; exit 0; }
+	@mkdir -p $(EX_DIR)
+	@if [ ! -f $(EX_DIR)/build.ninja ] || [ Makefile -nt $(EX_DIR)/CMakeCache.txt ]; then \
+	  san=OFF; t=$$(mktemp -d); \
+	  echo 'int main() { return 0; }' >$$t/a.cpp; \
+	  c++ -fsanitize=address,undefined $$t/a.cpp -o $$t/a 2>/dev/null && $$t/a && san=ON; \
+	  rm -rf $$t; \
+	  cmake -S . -B $(EX_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSOA_SANITIZE_STUDENT=$$san \
+	    -DSOA_PRECISIONS=double -DSOA_CHECK_STUBS=OFF \
+	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
+	    || { cat $(EX_DIR).cmake.log; exit 1; }; \
+	fi
+	@echo "Building the library and the exercise tests in $(EX_DIR) (the first time takes a few minutes)"
+	@cmake --build $(EX_DIR) -j $(JOBS) --target soa_exercise_main $(foreach n,$(EX_NNS),ex$(n)-tests) \
+	  >$(EX_DIR)/common.log 2>&1 || { tail -30 $(EX_DIR)/common.log; exit 1; }
+	@for nn in $(EX_NNS); do \
+	  dir=$$(ls -d exercises/$$nn-*); \
+	  echo; echo "== Lesson $$nn exercises ($$dir) =="; \
+	  rm -f $(EX_DIR)/tests/ex$$nn-exercises; \
+	  if cmake --build $(EX_DIR) -j $(JOBS) --target ex$$nn-exercises \
+	       >$(EX_DIR)/ex$$nn-exercises.log 2>&1; then \
+	    mkdir -p $(EX_DIR)/cases; SOA_EXERCISE_CASES=$(CURDIR)/$(EX_DIR)/cases \
+	    ASAN_OPTIONS=detect_leaks=0 $(EX_DIR)/tests/ex$$nn-exercises --report \
+	      --header $$dir/exercises.hpp $(EX_FILTER) \
+	      || echo "  the test program stopped: the message above names the line (see also $(EX_DIR)/ex$$nn-exercises.log)"; \
+	  else echo "  does not compile yet (all of $(EX_DIR)/ex$$nn-exercises.log):"; \
+	       grep -m8 -E 'error|note: +candidate' $(EX_DIR)/ex$$nn-exercises.log | sed 's/^/    /'; fi; \
 	done; true
+endif
+
+# After changing a statement or a stub: the checksums of the pristine stubs.
+stub-sums:
+	cmake -DROOT=$(CURDIR) -DWRITE=ON -P tests/exercises/stubs.cmake
 
 docs: build
 	cmake --build $(BUILD_DIR) --target docs

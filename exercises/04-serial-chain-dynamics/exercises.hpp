@@ -12,6 +12,10 @@
 /// Stacked 6n-vectors and the dense operators of soa::OperatorsT put body k at rows
 /// \f$6(k-1) \dots 6k-1\f$.
 ///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out), the time it usually takes, and the exercises it builds on ("uses 4.1":
+/// the same idea, done there first; never a call to your code of that exercise).
+///
 /// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
 /// and run `make exercises`. Do not call the library function an exercise reproduces (named
 /// in its statement); the other library functions are yours to use.
@@ -32,6 +36,7 @@ struct Gathered {
 };
 
 /// **Exercise 4.1: the gather recursion.**
+/// *Level 1 of 3, about 20 min.*
 /// The scatter sweep of lesson 3 has already given, for each body k, \f$\phi(k+1,k)\f$
 /// (\p phi, entry k−1) and the spatial acceleration \f$\alpha(k)\f$ (\p alpha); \p b holds
 /// \f$b(k)\f$, the gyroscopic term less any external force. Return, tip to base
@@ -46,6 +51,7 @@ Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vec
                        const std::vector<Acceleration>& alpha, const std::vector<Force>& b);
 
 /// **Exercise 4.2: Newton–Euler inverse dynamics of a revolute chain.**
+/// *Level 2 of 3, about 45 min; uses 4.1.*
 /// Every hinge of \p m is revolute about the unit axis \f$a_k\f$ = `m.body(k).hinge.axis`
 /// (so \f$H^*(k) = [a_k; 0]\f$ and \f$\theta(k)\f$, \f$\beta(k)\f$ are scalars); no springs,
 /// no external forces; gravity `m.gravity` (possibly zero). Return the hinge forces \f$T\f$
@@ -69,6 +75,7 @@ Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vec
 VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& beta_dot);
 
 /// **Exercise 4.3: the mass matrix from the operators.**
+/// *Level 1 of 3, about 20 min.*
 /// \p op holds the dense operators of a chain at one state (soa::OperatorsT): the shift
 /// operator `op.E_phi` \f$= \mathcal E_\phi\f$, `op.H` \f$= H\f$ (nv x 6n) and `op.M`
 /// \f$= M\f$ (6n x 6n). Its `op.phi` is **not** given (the tests set it to zero). Compute
@@ -80,6 +87,7 @@ VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& be
 MatX<double> mass_matrix_operators(const Operators& op);
 
 /// **Exercise 4.4: the mass matrix, column by column, from inverse dynamics.**
+/// *Level 1 of 3, about 20 min.*
 /// With \f$T = \mathcal M(\theta)\dot\beta + \mathcal C(\theta,\beta)\f$, column j of
 /// \f$\mathcal M\f$ is \f$T(\dot\beta = e_j) - T(\dot\beta = 0)\f$ at any \f$\beta\f$ (take
 /// \f$\beta = 0\f$): the difference removes gravity, springs and everything else in
@@ -92,6 +100,7 @@ MatX<double> mass_matrix_operators(const Operators& op);
 MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 4.5: the bias from the operators.**
+/// *Level 1 of 3, about 15 min; uses 4.3.*
 /// As in 4.3, \p op holds \f$\mathcal E_\phi\f$, \f$H\f$ and \f$M\f$ (`op.phi` zeroed), and
 /// also the stacked Coriolis terms `op.a` \f$= a\f$ (with gravity folded into the block of
 /// body n: \f$a(n) \mathrel{+}= \phi^*(n+1,n)\,[0; -g]\f$) and `op.b` \f$= b\f$ (gyroscopic
@@ -102,6 +111,7 @@ MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta);
 VecX<double> bias_operators(const Operators& op);
 
 /// **Exercise 4.6: gravity torques from the Jacobians of the centres of mass.**
+/// *Level 2 of 3, about 30 min.*
 /// Gravity pulls body k with the force \f$m_k g\f$ at its centre of mass \f$C_k\f$
 /// (\f$g\f$ = `m.gravity`, inertial coordinates). An external force \f$f_F\f$ at a frame F
 /// costs the hinge forces \f$-J^*(F)\, f_F\f$ (lesson 4, section 6), so the hinge forces that
@@ -116,6 +126,7 @@ VecX<double> bias_operators(const Operators& op);
 VecX<double> gravity_torques(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 4.7: the Coriolis matrix from the operators.**
+/// *Level 2 of 3, about 40 min; uses 4.3.*
 /// \p es holds, at one state of a chain (soa::EnergyStructureT, lesson 4, section 11), the
 /// operators `es.op` (\f$\phi\f$ = `es.op.phi`, \f$H\f$ = `es.op.H`, \f$M\f$ = `es.op.M`),
 /// `es.Delta_bar` \f$= \bar\Delta_V = \mathrm{diag}(\bar\Delta_V(k))\f$, `es.H_dot`

@@ -5,11 +5,19 @@
 //   (no flag)           exit status of the tests: 0 when every exercise passes (make test)
 //   --report            the table, exit 0 whatever the results (make exercises)
 //   --expect-all-fail   exit 0 only when every exercise fails (CI's check of the stubs)
+//   --header FILE       the lesson's exercises.hpp: each row shows the exercise's level, time
+//                       and what it uses, from its statement's second line
+//                       (`/// *Level 2 of 3, about 30 min; uses 4.1.*`)
+// A failure's message is shown under its row: the exercise checker's (exercise_check.hpp)
+// names the check, the likely mistake or the symptom, where the error is and the case.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +29,31 @@ struct Row {
   std::string first_failure;
 };
 
+// "4.2" -> "level 2, 30 min, uses 4.1", read from the statements in exercises.hpp.
+std::map<std::string, std::string> read_meta(const char* header) {
+  std::map<std::string, std::string> meta;
+  if (!header) return meta;
+  std::ifstream in(header);
+  const std::regex title(R"(\*\*Exercise (\d+\.\d+):)");
+  const std::regex level(
+      R"(\*Level (\d) of 3, about (\d+) min(?:; uses (\d+\.\d+(?:(?:, | and )\d+\.\d+)*))?)");
+  std::string line, current;
+  int after = 0;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, title)) {
+      current = m[1];
+      after = 0;
+    }
+    if (!current.empty() && after++ < 3 && std::regex_search(line, m, level)) {
+      meta[current] = "level " + m[1].str() + ", " + m[2].str() + " min" +
+                      (m[3].matched ? ", uses " + m[3].str() : "");
+      current.clear();
+    }
+  }
+  return meta;
+}
+
 class Table : public testing::EmptyTestEventListener {
  public:
   void OnTestPartResult(const testing::TestPartResult& r) override {
@@ -28,10 +61,15 @@ class Table : public testing::EmptyTestEventListener {
     Row& row = rows_[current_];
     row.failed = true;
     std::string msg = r.message() ? r.message() : "";
-    if (msg.find("not done") != std::string::npos) row.not_done = true;
+    if (msg.find("not done: exercise") != std::string::npos) row.not_done = true;
     // ADD_FAILURE() << text gives "Failed\ntext": the text is what names the mistake.
     if (msg.rfind("Failed\n", 0) == 0) msg.erase(0, 7);
-    if (row.first_failure.empty()) row.first_failure = msg.substr(0, msg.find('\n'));
+    // gtest's own messages ("Expected: ...") are shown by their first line; the exercise
+    // checker's (which start with the check's name) in full.
+    if (row.first_failure.empty())
+      row.first_failure = msg.rfind("Expected", 0) == 0 || msg.rfind("Value of", 0) == 0
+                              ? msg.substr(0, msg.find('\n'))
+                              : msg;
   }
   void OnTestStart(const testing::TestInfo& info) override {
     current_ = info.test_suite_name();
@@ -49,13 +87,21 @@ class Table : public testing::EmptyTestEventListener {
     return s;
   }
 
-  void print() const {
-    std::printf("\n  %-40s %s\n", "exercise", "result");
+  void print(const std::map<std::string, std::string>& meta) const {
+    std::printf("\n  %-34s %-28s %s\n", "exercise", "", "result");
     for (const auto& name : order_) {
       const Row& r = rows_.at(name);
       const char* status = !r.failed ? "pass" : r.not_done ? "not done" : "FAIL";
-      std::printf("  %-40s %s\n", label(name).c_str(), status);
-      if (r.failed && !r.not_done) std::printf("      %s\n", r.first_failure.c_str());
+      const std::string l = label(name);
+      const auto it = meta.find(l.substr(0, l.find(' ')));
+      std::printf("  %-34s %-28s %s\n", l.c_str(), it == meta.end() ? "" : it->second.c_str(),
+                  status);
+      if (r.failed && !r.not_done) {
+        std::istringstream text(r.first_failure);
+        std::string line;
+        int lines = 0;
+        while (std::getline(text, line) && lines++ < 60) std::printf("      %s\n", line.c_str());
+      }
     }
   }
   int passed() const {
@@ -75,16 +121,20 @@ class Table : public testing::EmptyTestEventListener {
 
 int main(int argc, char** argv) {
   bool report = false, expect_all_fail = false;
+  const char* header = nullptr;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     if (std::strcmp(argv[i], "--report") == 0)
       report = true;
+    else if (std::strcmp(argv[i], "--header") == 0 && i + 1 < argc)
+      header = argv[++i];
     else if (std::strcmp(argv[i], "--expect-all-fail") == 0)
       expect_all_fail = true;
     else
       args.push_back(argv[i]);
   }
   int n = int(args.size());
+  args.push_back(nullptr);  // argv[argc] is null: gtest shifts the arguments it takes
   testing::InitGoogleTest(&n, args.data());
   if (report || expect_all_fail) {
     // Keep the table readable: gtest's own per-test lines are left out.
@@ -94,7 +144,7 @@ int main(int argc, char** argv) {
   auto* table = new Table;
   testing::UnitTest::GetInstance()->listeners().Append(table);
   const int rc = RUN_ALL_TESTS();
-  table->print();
+  table->print(read_meta(header));
   std::printf("  %d of %d exercises pass\n", table->passed(), table->total());
   if (report) return 0;
   if (expect_all_fail) return table->passed() == 0 && table->total() > 0 ? 0 : 1;

@@ -11,10 +11,20 @@
 # reports and the benchmarks keep the build type's flags.
 set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
 
+# `make exercises` compiles the student's code (the `plain` targets, with their precompiled
+# header) with AddressSanitizer and UBSan, so that a mistake stops at the student's own line;
+# the library and the tests are trusted and stay uninstrumented (ASan triples their compile).
+option(SOA_SANITIZE_STUDENT "ASan + UBSan for the exercises' code (make exercises)" OFF)
+set(SOA_STUDENT_SAN "")
+if(SOA_SANITIZE_STUDENT)
+  set(SOA_STUDENT_SAN -fsanitize=address,undefined -fno-sanitize-recover=all
+                      -fno-omit-frame-pointer)
+endif()
+
 set(SOA_PCH_DIR ${CMAKE_CURRENT_LIST_DIR})
 # The library alone: lessons, exercises, solutions.
 add_library(soa_pch_plain OBJECT ${SOA_PCH_DIR}/pch_source.cpp)
-target_compile_options(soa_pch_plain PRIVATE ${SOA_CHECK_OPT})
+target_compile_options(soa_pch_plain PRIVATE ${SOA_CHECK_OPT} ${SOA_STUDENT_SAN})
 target_link_libraries(soa_pch_plain PRIVATE soa)
 target_precompile_headers(soa_pch_plain PRIVATE <Eigen/Dense> <Eigen/Eigenvalues> <soa/soa.hpp>)
 # GoogleTest and the library: the test executables and the exercise tests.
@@ -27,5 +37,9 @@ target_precompile_headers(soa_pch_test PRIVATE <gtest/gtest.h> <Eigen/Dense> <Ei
 # soa_check_target(<target> plain|test): the check flags and the precompiled header.
 function(soa_check_target target kind)
   target_compile_options(${target} PRIVATE ${SOA_CHECK_OPT})
+  if(kind STREQUAL "plain" AND SOA_STUDENT_SAN)
+    target_compile_options(${target} PRIVATE ${SOA_STUDENT_SAN})
+    target_link_options(${target} INTERFACE -fsanitize=address,undefined)
+  endif()
   target_precompile_headers(${target} REUSE_FROM soa_pch_${kind})
 endfunction()

@@ -70,6 +70,20 @@ ModelT<S> random_chain_of_type(Random<S>& rnd, int n, HingeType type,
   return detail::finish_chain(std::move(bodies), opt);
 }
 
+/// A random chain of \p n bodies whose hinge types are drawn at random (revolute,
+/// prismatic, helical, universal, spherical, free; revolute only when
+/// !opt.all_hinge_types), so that across cases the hinge types and the number of bodies vary
+/// independently (the exercise checker tells symptoms apart by them).
+template <class S>
+ModelT<S> random_chain_mixed(Random<S>& rnd, int n, const ChainOptions& opt = {}) {
+  std::vector<BodyT<S>> bodies;
+  for (int i = 0; i < n; ++i) {
+    const auto type = opt.all_hinge_types ? HingeType(rnd.engine()() % 6) : HingeType::Revolute;
+    bodies.push_back(detail::random_body(rnd, i, type, opt));
+  }
+  return detail::finish_chain(std::move(bodies), opt);
+}
+
 /// A random state of \p m: angles and offsets ~ N(0,1), unit quaternions, rates ~ N(0,1).
 template <class S>
 StateT<S> random_state(Random<S>& rnd, const ModelT<S>& m) {

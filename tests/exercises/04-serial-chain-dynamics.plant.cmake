@@ -1,0 +1,35 @@
+# Planted mistakes of lesson 4 (tests/exercises/plant.cmake): each is applied to the
+# solutions and the checker must name it.
+soa_plant(4.1 neighbour-index
+  FIND [=[phi[i - 1].apply(g.f[i - 1])]=]
+  WRONG [=[phi[i].apply(g.f[i - 1])]=]
+  EXPECT [=[likely mistake \(neighbour index\): your f\(k\) takes phi\(k\+1,k\)]=])
+soa_plant(4.2 gravity-sign
+  FIND [=[-m.gravity]=]
+  WRONG [=[m.gravity]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(sign\): your base acceleration is alpha\(n\+1\) = \[0; \+g\]]=])
+soa_plant(4.2 unrotated-l
+  FIND [=[Rt * phi[i].l()]=]
+  WRONG [=[phi[i].l()]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\)]=])
+soa_plant(4.2 coriolis-doubled
+  FIND [=[w_parent.cross(be * a)]=]
+  WRONG [=[2.0 * w_parent.cross(be * a)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: every case unless the chain moves \(beta != 0\) passes]=])
+soa_plant(4.3 transpose
+  FIND [=[phi.transpose() * op.H.transpose()]=]
+  WRONG [=[phi * op.H.transpose()]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your result is H phi\* M phi H\*]=])
+soa_plant(4.5 dropped-b
+  FIND [=[op.M * (phi.transpose() * op.a) + op.b]=]
+  WRONG [=[op.M * (phi.transpose() * op.a)]=] TYPE [=[VecX<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): b \(gyroscopic less external forces\) is missing]=])
+soa_plant(4.6 wrong-frame
+  FIND [=[ws.pose[std::size_t(k - 1)].R().transpose() * m.gravity]=]
+  WRONG [=[m.gravity]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\)]=])
+soa_plant(4.7 transpose
+  FIND [=[B.transpose() * (es.op.M * B_dot + es.h_breve * B)]=]
+  WRONG [=[(B.transpose() * (es.op.M * B_dot + es.h_breve * B)).transpose()]=]
+  TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your result is C_v\*]=])

@@ -1,0 +1,65 @@
+# Planted mistakes: a test of the exercise checker itself (tests/support/exercise_check.hpp).
+#
+# For lesson NN, tests/exercises/NN-topic.plant.cmake lists mistakes to plant in the
+# lesson's solutions, each as
+#   soa_plant(<exercise> <id> FIND <text> WRONG <text> [TYPE <type>] EXPECT <regex>)
+# <text> is an expression of solutions/NN-topic/solutions.cpp (found exactly once; no
+# semicolons) and the wrong expression that replaces it; TYPE names the type both convert
+# to when their types differ (Eigen expressions). The build compiles one copy of the
+# solutions with every mistake in place, each switched on at run time by SOA_PLANT=<id>
+# (tests/support/planted.hpp), and ctest runs the lesson's exercise tests on it once per
+# mistake: `exercises.NN.planted.<id>` passes when the report of <exercise> matches
+# <regex> (the mistake named, e.g. "likely mistake \(transpose\)").
+
+function(soa_plant exercise id)
+  cmake_parse_arguments(P "" "FIND;WRONG;TYPE;EXPECT" "" ${ARGN})
+  foreach(key FIND WRONG EXPECT)
+    if(NOT DEFINED P_${key})
+      message(FATAL_ERROR "${_soa_plant_list}: soa_plant(${exercise} ${id}) has no ${key}")
+    endif()
+  endforeach()
+  string(FIND "${_soa_src}" "${P_FIND}" first)
+  string(FIND "${_soa_src}" "${P_FIND}" last REVERSE)
+  if(first EQUAL -1)
+    message(FATAL_ERROR "${_soa_plant_list}: ${id}: FIND text not in the solutions: ${P_FIND}")
+  endif()
+  if(NOT first EQUAL last)
+    message(FATAL_ERROR "${_soa_plant_list}: ${id}: FIND text is there more than once: ${P_FIND}")
+  endif()
+  set(full "${exercise}/${id}")
+  string(REPLACE "${P_FIND}" "(::soa_planted(\"${full}\") ? ${P_TYPE}(${P_WRONG}) : ${P_TYPE}(${P_FIND}))"
+         src "${_soa_src}")
+  set(_soa_src "${src}" PARENT_SCOPE)
+  list(APPEND _soa_plants "${full}")
+  set(_soa_plants "${_soa_plants}" PARENT_SCOPE)
+  set(_soa_expect_${full} "${P_EXPECT}" PARENT_SCOPE)
+endfunction()
+
+# soa_planted_solutions(<nn> <NN-topic> <list file>): the planted build and its tests.
+function(soa_planted_solutions nn dir list_file)
+  set(solution ${PROJECT_SOURCE_DIR}/solutions/${dir}/solutions.cpp)
+  file(READ ${solution} _soa_src)
+  set(_soa_plants "")
+  set(_soa_plant_list ${list_file})
+  include(${list_file})
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${list_file} ${solution})
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/solutions.cpp)
+  file(WRITE ${out}.new "#include \"planted.hpp\"\n#line 1 \"${solution}\"\n${_soa_src}")
+  file(COPY_FILE ${out}.new ${out} ONLY_IF_DIFFERENT)
+  add_library(solutions_${nn}_planted STATIC ${out})
+  target_include_directories(solutions_${nn}_planted
+    PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${PROJECT_SOURCE_DIR}/exercises/${dir}
+            ${PROJECT_SOURCE_DIR}/exercises ${PROJECT_SOURCE_DIR}/solutions/${dir})
+  target_link_libraries(solutions_${nn}_planted PUBLIC soa)
+  soa_check_target(solutions_${nn}_planted plain)
+  add_executable(ex${nn}-planted $<TARGET_OBJECTS:ex${nn}-tests>)
+  target_link_libraries(ex${nn}-planted PRIVATE solutions_${nn}_planted soa_exercise_main)
+  foreach(full IN LISTS _soa_plants)
+    string(REGEX MATCH "^([0-9]+)\\.([0-9]+)/(.*)$" _ "${full}")
+    set(filter "Exercise${CMAKE_MATCH_1}_${CMAKE_MATCH_2}_*")
+    set(name exercises.${nn}.planted.${CMAKE_MATCH_1}.${CMAKE_MATCH_2}.${CMAKE_MATCH_3})
+    add_test(NAME ${name} COMMAND ex${nn}-planted --report --gtest_filter=${filter})
+    set_tests_properties(${name} PROPERTIES LABELS exercises ENVIRONMENT "SOA_PLANT=${full}"
+                                            PASS_REGULAR_EXPRESSION "${_soa_expect_${full}}")
+  endforeach()
+endfunction()

@@ -1,0 +1,588 @@
+/// \file
+/// The exercise checker: feedback that names the mistake.
+///
+/// An exercise test draws many random cases and, for each, gives a Check the student's
+/// result, the library's (the expected value), the scale rounding errors grow with, what the
+/// case has (tags: moving, gravity, prismatic hinges, ...), the case's inputs as C++ a
+/// student can paste into a program, and the classic wrong answers of the exercise computed
+/// from the reference (its catalogue of mistakes). When the check fails, its message says,
+/// in this order:
+///   - which check failed, in words, how often, and the worst relative error;
+///   - the mistake of the catalogue the student's result equals, in every failing case
+///     where it differs from the right answer ("did you transpose?");
+///   - otherwise the symptom: the tag that every failing case has and every passing case
+///     may lack ("passes at rest, fails moving: a velocity term");
+///   - where the error is in the worst case (per body, angular / linear part, per hinge),
+///     expected against got;
+///   - the worst case's inputs as code.
+/// The first line of the message is what `make exercises` shows on the exercise's row; the
+/// rest follows under it.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "property.hpp"
+#include "soa/chain.hpp"
+
+namespace soa::test {
+
+// --- What a case has: tags, for the symptom of a mistake no catalogue entry matches ----------
+
+/// Features of a random case. A test sets those its case has; the checker looks for a tag
+/// that separates the failing cases from the passing ones.
+enum Tag : unsigned {
+  kMoving = 1u << 0,          ///< \f$\beta \ne 0\f$ (velocities)
+  kAccelerating = 1u << 1,    ///< \f$\dot\beta \ne 0\f$
+  kGravity = 1u << 2,         ///< gravity is on
+  kPrismatic = 1u << 3,       ///< some hinge is prismatic
+  kHelical = 1u << 4,         ///< some hinge is helical
+  kMultiDof = 1u << 5,        ///< some hinge has several degrees of freedom
+  kSeveralBodies = 1u << 6,   ///< more than one body
+  kExternalForces = 1u << 7,  ///< external forces act on the bodies
+  kSprings = 1u << 8,         ///< hinge springs or dampers
+  kOffsetCom = 1u << 9,       ///< a centre of mass away from the frame's origin
+  kRotated = 1u << 10,        ///< a frame rotated relative to the other
+  kTranslated = 1u << 11,     ///< a frame offset from the other
+};
+
+/// What a tag means for a student: the case it marks, and what a mistake confined to such
+/// cases usually is.
+struct TagMeaning {
+  Tag tag;
+  const char* cases;  ///< "cases where the chain moves"
+  const char* hint;   ///< "a velocity term is wrong or missing"
+};
+
+inline const std::vector<TagMeaning>& tag_meanings() {
+  static const std::vector<TagMeaning> t = {
+      {kMoving, "the chain moves (beta != 0)",
+       "a velocity-dependent term (Coriolis a(k), gyroscopic b(k) or a velocity itself) is "
+       "wrong or missing"},
+      {kAccelerating, "the accelerations are not zero", "a term in beta_dot is wrong or missing"},
+      {kGravity, "gravity is on",
+       "gravity enters wrong: alpha(n+1) = [0; -g], in base coordinates"},
+      {kPrismatic, "a hinge is prismatic",
+       "the hinge map H* (or its derivative) is assumed to be about an axis of rotation"},
+      {kHelical, "a hinge is helical", "the pitch term of the helical hinge is wrong or missing"},
+      {kMultiDof, "a hinge has several degrees of freedom",
+       "a hinge is assumed to have one degree of freedom (mind v_offset and the dof count)"},
+      {kSeveralBodies, "there is more than one body",
+       "the step from one body to the next: the index (phi(k+1,k) vs phi(k,k-1)) or the "
+       "direction of the sweep"},
+      {kExternalForces, "external forces act",
+       "the external forces enter wrong (b(k) = ... - f_ext)"},
+      {kSprings, "the hinges have springs or dampers", "the spring or damper term is wrong"},
+      {kOffsetCom, "the centre of mass is off the frame's origin",
+       "the first moment m p(x) (the off-diagonal blocks of M) is wrong"},
+      {kRotated, "the frames are rotated", "a rotation is transposed or applied on the wrong side"},
+      {kTranslated, "the frames are offset", "the offset l (or its sign, or its frame) is wrong"},
+  };
+  return t;
+}
+
+// --- Inputs as code ----------------------------------------------------------------------------
+
+/// A double with every digit (round-trips exactly).
+inline std::string num(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+/// Eigen initializer list text of \p a, row by row: `{{a00, a01}, {a10, a11}}`, or
+/// `{a0, a1, a2}` for a vector.
+template <class D>
+std::string list(const Eigen::MatrixBase<D>& a) {
+  std::string s = "{";
+  if (a.cols() == 1) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) s += (i ? ", " : "") + num(double(a(i, 0)));
+    return s + "}";
+  }
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    s += i ? ", {" : "{";
+    for (Eigen::Index j = 0; j < a.cols(); ++j) s += (j ? ", " : "") + num(double(a(i, j)));
+    s += "}";
+  }
+  return s + "}";
+}
+
+/// `soa::Vec3<double> name{...};` and friends: one declaration per line.
+inline std::string code(const std::string& name, const Vec3<double>& v) {
+  return "soa::Vec3<double> " + name + " = soa::Vec3<double>" + list(v) + ";\n";
+}
+inline std::string code(const std::string& name, const Mat3<double>& R) {
+  return "soa::Mat3<double> " + name + " = soa::Mat3<double>" + list(R) + ";\n";
+}
+inline std::string code(const std::string& name, const VecX<double>& v) {
+  std::string s = "soa::VecX<double> " + name + "(" + std::to_string(v.size()) + ");";
+  if (v.size() > 0) s += " " + name + " << " + list(v).substr(1, list(v).size() - 2) + ";";
+  return s + "\n";
+}
+inline std::string code(const std::string& name, const Phi& p) {
+  return "soa::Phi " + name + "(soa::Mat3<double>" + list(p.R()) + ", soa::Vec3<double>" +
+         list(p.l()) + ");\n";
+}
+inline std::string code(const std::string& name, const Pose& p) {
+  return "soa::Pose " + name + "(soa::Mat3<double>" + list(p.R()) + ", soa::Vec3<double>" +
+         list(p.l()) + ");\n";
+}
+template <class Kind>
+std::string code(const std::string& name, const SpatialVector<double, Kind>& v) {
+  // The type's name as the student writes it.
+  const char* type = std::is_same_v<SpatialVector<double, Kind>, Velocity> ? "soa::Velocity"
+                     : std::is_same_v<SpatialVector<double, Kind>, Acceleration>
+                         ? "soa::Acceleration"
+                     : std::is_same_v<SpatialVector<double, Kind>, Force> ? "soa::Force"
+                                                                          : "soa::Momentum";
+  return std::string(type) + " " + name + "(soa::Vec3<double>" + list(Vec3<double>(v.angular())) +
+         ", soa::Vec3<double>" + list(Vec3<double>(v.linear())) + ");\n";
+}
+inline std::string code(const std::string& name, const SpatialInertia& M) {
+  return "soa::SpatialInertia " + name + "(" + num(M.mass()) + ", soa::Vec3<double>" + list(M.h()) +
+         ", soa::Mat3<double>" + list(M.J()) + ");\n";
+}
+
+inline const char* hinge_enum(HingeType t) {
+  switch (t) {
+    case HingeType::Revolute:
+      return "Revolute";
+    case HingeType::Prismatic:
+      return "Prismatic";
+    case HingeType::Helical:
+      return "Helical";
+    case HingeType::Universal:
+      return "Universal";
+    case HingeType::Spherical:
+      return "Spherical";
+    case HingeType::Free:
+      return "Free";
+    case HingeType::Locked:
+      return "Locked";
+  }
+  return "Revolute";
+}
+
+/// The chain \p m as code that rebuilds it (`soa::Model name = ...`), base first as
+/// soa::ModelT::from_base_first takes it.
+inline std::string code(const std::string& name, const Model& m) {
+  std::ostringstream s;
+  s << "std::vector<soa::Body> " << name << "_bodies(" << m.n() << ");  // base first\n";
+  for (int k = m.n(); k >= 1; --k) {
+    const Body& B = m.body(k);
+    const std::string b = name + "_bodies[" + std::to_string(m.n() - k) + "]";
+    s << "// body " << k << " (" << hinge_type_name(B.hinge.type) << " hinge)\n";
+    s << b << ".M = soa::SpatialInertia(" << num(B.M.mass()) << ", soa::Vec3<double>"
+      << list(B.M.h()) << ", soa::Mat3<double>" << list(B.M.J()) << ");\n";
+    s << b << ".placement = soa::Pose(soa::Mat3<double>" << list(B.placement.R())
+      << ", soa::Vec3<double>" << list(B.placement.l()) << ");\n";
+    s << b << ".hinge.type = soa::HingeType::" << hinge_enum(B.hinge.type) << ";\n";
+    s << b << ".hinge.axis = soa::Vec3<double>" << list(B.hinge.axis) << ";\n";
+    if (B.hinge.type == HingeType::Universal)
+      s << b << ".hinge.axis2 = soa::Vec3<double>" << list(B.hinge.axis2) << ";\n";
+    if (B.hinge.type == HingeType::Helical)
+      s << b << ".hinge.pitch = " << num(B.hinge.pitch) << ";\n";
+    if (B.stiffness != 0) s << b << ".stiffness = " << num(B.stiffness) << ";\n";
+    if (B.damping != 0) s << b << ".damping = " << num(B.damping) << ";\n";
+  }
+  s << "soa::Model " << name << " = soa::Model::from_base_first(" << name << "_bodies);\n";
+  if (m.has_gravity()) s << name << ".gravity = soa::Vec3<double>" << list(m.gravity) << ";\n";
+  return s.str();
+}
+inline std::string code(const std::string& name, const State& x) {
+  return code(name + "_theta", x.theta) + code(name + "_beta", x.beta) + "soa::State " + name +
+         "{" + name + "_theta, " + name + "_beta};\n";
+}
+
+/// The tags of a chain case: moving, gravity, the hinge types, several bodies, springs.
+inline unsigned chain_tags(const Model& m, const State& x) {
+  unsigned t = 0;
+  if (x.beta.size() && x.beta.cwiseAbs().maxCoeff() > 0) t |= kMoving;
+  if (m.has_gravity()) t |= kGravity;
+  if (m.has_springs()) t |= kSprings;
+  if (m.n() > 1) t |= kSeveralBodies;
+  for (int k = 1; k <= m.n(); ++k) {
+    const HingeType h = m.body(k).hinge.type;
+    if (h == HingeType::Prismatic) t |= kPrismatic;
+    if (h == HingeType::Helical) t |= kHelical;
+    if (h == HingeType::Universal || h == HingeType::Spherical || h == HingeType::Free)
+      t |= kMultiDof;
+  }
+  return t;
+}
+
+// --- Names of the entries of a result, for "where the error is" ---------------------------------
+
+/// Names entry (i, j) of a result and the part it belongs to (the error is summed per part).
+struct EntryName {
+  std::string entry;  ///< "T[3] (body 2, revolute)"
+  std::string part;   ///< "T of body 2"
+};
+using Naming = std::function<EntryName(Eigen::Index i, Eigen::Index j)>;
+
+/// Which body each dof of \p m belongs to (tip first), and the bodies' hinge names: a copy,
+/// so that a Naming outlives the model of its case.
+struct DofMap {
+  std::vector<int> body;           ///< body of dof i
+  std::vector<std::string> hinge;  ///< hinge type name of body k at k-1
+  explicit DofMap(const Model& m) {
+    for (int k = 1; k <= m.n(); ++k) {
+      hinge.push_back(hinge_type_name(m.body(k).hinge.type));
+      for (int d = 0; d < m.body(k).hinge.nv(); ++d) body.push_back(k);
+    }
+  }
+};
+
+/// A vector of hinge quantities (size nv, tip first): entry i is a dof of body k.
+inline Naming per_dof(const Model& m, const std::string& sym) {
+  return [map = DofMap(m), sym](Eigen::Index i, Eigen::Index) {
+    const int k = i < Eigen::Index(map.body.size()) ? map.body[std::size_t(i)] : 0;
+    const std::string h = k > 0 ? map.hinge[std::size_t(k - 1)] : "?";
+    return EntryName{
+        sym + "[" + std::to_string(i) + "] (body " + std::to_string(k) + ", " + h + ")",
+        sym + " of body " + std::to_string(k) + " (" + h + ")"};
+  };
+}
+
+/// A stack of spatial vectors (6 per body, body 1 first): angular and linear part per body.
+inline Naming per_body_spatial(const std::string& sym) {
+  return [sym](Eigen::Index i, Eigen::Index) {
+    const std::string k = std::to_string(i / 6 + 1);
+    const bool ang = i % 6 < 3;
+    const std::string part = sym + "(" + k + ") " + (ang ? "angular" : "linear") + " part";
+    return EntryName{
+        sym + "(" + k + ")[" + std::to_string(i % 6) + "] (" + (ang ? "angular" : "linear") + ")",
+        part};
+  };
+}
+
+/// One spatial vector: angular (rows 0-2) and linear (rows 3-5) part.
+inline Naming spatial(const std::string& sym) {
+  return [sym](Eigen::Index i, Eigen::Index) {
+    const bool ang = i < 3;
+    return EntryName{sym + "[" + std::to_string(i) + "] (" + (ang ? "angular" : "linear") + ")",
+                     std::string("the ") + (ang ? "angular" : "linear") + " part of " + sym};
+  };
+}
+
+/// A 6x6 matrix: its four 3x3 blocks.
+inline Naming blocks6(const std::string& sym) {
+  return [sym](Eigen::Index i, Eigen::Index j) {
+    static const char* rc[2] = {"angular", "linear"};
+    return EntryName{sym + "(" + std::to_string(i) + "," + std::to_string(j) + ")",
+                     std::string("the ") + rc[i / 3] + "-" + rc[j / 3] + " block of " + sym};
+  };
+}
+
+/// A matrix over bodies (6 rows/cols per body): block (k, l) of 6x6.
+inline Naming body_blocks(const std::string& sym) {
+  return [sym](Eigen::Index i, Eigen::Index j) {
+    const std::string b = std::to_string(i / 6 + 1) + "," + std::to_string(j / 6 + 1);
+    return EntryName{sym + "(" + std::to_string(i) + "," + std::to_string(j) + ")",
+                     "block (" + b + ") of " + sym};
+  };
+}
+
+/// A matrix over dofs (nv x nv): block (k, l) of the bodies the dofs belong to.
+inline Naming dof_blocks(const Model& m, const std::string& sym) {
+  return [map = DofMap(m), sym](Eigen::Index i, Eigen::Index j) {
+    auto body = [&map](Eigen::Index d) {
+      return d < Eigen::Index(map.body.size()) ? map.body[std::size_t(d)] : 0;
+    };
+    return EntryName{sym + "(" + std::to_string(i) + "," + std::to_string(j) + ")",
+                     sym + "(" + std::to_string(body(i)) + "," + std::to_string(body(j)) +
+                         ") (bodies " + std::to_string(body(i)) + " and " +
+                         std::to_string(body(j)) + ")"};
+  };
+}
+
+// --- The catalogue of mistakes ------------------------------------------------------------------
+
+/// A classic wrong answer of an exercise, computed from the reference for one case.
+struct Mistake {
+  const char* kind;  ///< "transpose", "sign", "neighbour index", "dropped term", "wrong frame",
+                     ///< "degrees", ...
+  std::string says;  ///< "your result equals phi(k+1,k) V: did you transpose?"
+  MatX<double> value;
+};
+using Mistakes = std::vector<Mistake>;
+
+/// The sign-flipped answer: a mistake every exercise has.
+template <class D>
+Mistake negated(const Eigen::MatrixBase<D>& expected, std::string says) {
+  return Mistake{"sign", std::move(says), MatX<double>(-expected)};
+}
+
+// --- The check ----------------------------------------------------------------------------------
+
+/// One named check of an exercise over many random cases (see the file's comment).
+class Check {
+ public:
+  /// \p what names the checked quantity in words ("T, the hinge forces"); a case passes when
+  /// \f$\|got - expected\| \le tol \cdot scale\f$.
+  Check(std::string what, double tol)
+      : what_(std::move(what)), tol_(tol), worst_(what_ + " / scale") {}
+  Check(const Check&) = delete;
+  Check& operator=(const Check&) = delete;
+
+  /// Case \p i. \p inputs and \p mistakes are called only for failing cases (the first few).
+  /// Returns true when the case passes.
+  template <class G, class E>
+  bool add(int i, const Eigen::MatrixBase<G>& got, const Eigen::MatrixBase<E>& expected,
+           double scale, unsigned tags, const std::function<std::string()>& inputs,
+           const std::function<Mistakes()>& mistakes = {}, const Naming& naming = {}) {
+    ++cases_;
+    for (const auto& t : tag_meanings()) (tags & t.tag ? with_ : without_)[t.tag].cases++;
+    const MatX<double> g = got.template cast<double>(), e = expected.template cast<double>();
+    if (g.rows() != e.rows() || g.cols() != e.cols()) {
+      if (shape_.empty())
+        shape_ = what_ + ": your result is " + std::to_string(g.rows()) + " x " +
+                 std::to_string(g.cols()) + ", expected " + std::to_string(e.rows()) + " x " +
+                 std::to_string(e.cols()) + " (case " + std::to_string(i) + ")\n" +
+                 indent(inputs ? inputs() : "");
+      fail(tags);
+      worst_.add(INFINITY, i);
+      return false;
+    }
+    double r = (g - e).norm() / std::max(scale, 1e-300);
+    if (!g.allFinite()) r = INFINITY;
+    worst_.add(r, i);
+    if (r <= tol_) return true;
+    fail(tags);
+    if (r >= worst_r_) {
+      worst_r_ = r;
+      worst_i_ = i;
+      worst_rel_ = (g - e).norm() / std::max(e.norm(), 1e-300);
+    }
+    // The case shown in full is the simplest that fails (the smallest result), the worst of
+    // those: easier to follow by hand than the worst of all.
+    if (shown_i_ < 0 || g.size() < shown_got_.size() ||
+        (g.size() == shown_got_.size() && r > shown_r_)) {
+      shown_i_ = i;
+      shown_r_ = r;
+      shown_got_ = g;
+      shown_exp_ = e;
+      shown_inputs_ = inputs ? inputs() : "";
+      naming_ = naming;
+    }
+    if (mistakes && examined_ < kExamine) {
+      ++examined_;
+      for (Mistake& mk : mistakes()) {
+        Tally& t = tally(mk);
+        if (mk.value.rows() != e.rows() || mk.value.cols() != e.cols()) continue;
+        // A variant equal to the right answer in this case tells nothing.
+        const double sep = (mk.value - e).norm() / std::max(scale, 1e-300);
+        if (sep <= 1e3 * tol_) continue;
+        ++t.informative;
+        if ((g - mk.value).norm() / std::max(scale, 1e-300) <= 1e3 * tol_) ++t.matched;
+      }
+    }
+    return false;
+  }
+
+  ~Check() {
+    if (std::uncaught_exceptions() > 0 || cases_ == 0) return;  // the test stopped early
+    if (failed_ == 0) return;
+    ADD_FAILURE() << message();
+  }
+
+  int failed() const { return failed_; }
+  double worst() const { return worst_.value(); }
+
+  /// The feedback: first line for the table's row, the rest under it.
+  std::string message() const {
+    if (!shape_.empty()) return shape_;
+    std::ostringstream s;
+    s << what_ << ": wrong in " << failed_ << " of " << cases_ << " cases (worst relative error "
+      << short_num(worst_rel_) << ", case " << worst_i_ << ")\n";
+    bool named = false;
+    for (const Tally& t : tallies_)
+      if (t.informative > 0 && t.matched == t.informative) {
+        s << "  likely mistake (" << t.kind << "): " << t.says << "\n";
+        named = true;
+      }
+    if (!named) {
+      for (const Tally& t : tallies_)
+        if (t.informative > 0 && t.matched * 2 >= t.informative && t.matched > 0)
+          s << "  perhaps (" << t.kind << ", " << t.matched << " of " << t.informative
+            << " failing cases): " << t.says << "\n";
+      for (const std::string& sym : symptoms()) s << "  symptom: " << sym << "\n";
+    }
+    s << where();
+    s << case_code();
+    return s.str();
+  }
+
+ private:
+  static constexpr int kExamine = 64;  // failing cases whose mistakes are computed
+  struct Count {
+    int cases = 0, failed = 0;
+  };
+  struct Tally {
+    const char* kind;
+    std::string says;
+    int informative = 0, matched = 0;
+  };
+
+  Tally& tally(const Mistake& mk) {
+    for (Tally& t : tallies_)
+      if (t.says == mk.says) return t;
+    tallies_.push_back(Tally{mk.kind, mk.says});
+    return tallies_.back();
+  }
+  void fail(unsigned tags) {
+    ++failed_;
+    for (const auto& t : tag_meanings()) (tags & t.tag ? with_ : without_)[t.tag].failed++;
+  }
+
+  // A tag that all failing cases have while the cases without it all pass.
+  std::vector<std::string> symptoms() const {
+    std::vector<std::string> out;
+    for (const auto& t : tag_meanings()) {
+      const Count w = at(with_, t.tag), wo = at(without_, t.tag);
+      if (wo.cases > 0 && wo.failed == 0 && w.failed > 0)
+        out.push_back("every case unless " + std::string(t.cases) + " passes; " +
+                      std::to_string(w.failed) + " of " + std::to_string(w.cases) +
+                      " where it does fail: " + t.hint);
+      else if (w.cases > 0 && w.failed == 0 && wo.failed > 0)
+        out.push_back("every case where " + std::string(t.cases) + " passes; " +
+                      std::to_string(wo.failed) + " of " + std::to_string(wo.cases) +
+                      " others fail");
+    }
+    if (out.size() > 2) out.resize(2);
+    if (out.empty() && failed_ == cases_)
+      out.push_back(
+          "every case fails, whatever it has: the formula itself (or the layout "
+          "of the result: order, tip first) is off");
+    return out;
+  }
+  static Count at(const std::map<unsigned, Count>& v, unsigned tag) {
+    const auto it = v.find(tag);
+    return it == v.end() ? Count{} : it->second;
+  }
+
+  // Where the error of the worst case sits: parts ranked by their share, then the entries.
+  std::string where() const {
+    if (shown_got_.size() == 0) return "";
+    std::ostringstream s;
+    const MatX<double> d = shown_got_ - shown_exp_;
+    const double total = d.squaredNorm();
+    std::vector<std::pair<std::string, double>> parts;
+    std::vector<std::tuple<double, std::string, double, double>> entries;
+    for (Eigen::Index j = 0; j < d.cols(); ++j)
+      for (Eigen::Index i = 0; i < d.rows(); ++i) {
+        const EntryName n =
+            naming_
+                ? naming_(i, j)
+                : EntryName{d.cols() == 1 ? "[" + std::to_string(i) + "]"
+                                          : "(" + std::to_string(i) + "," + std::to_string(j) + ")",
+                            ""};
+        if (!n.part.empty()) {
+          auto it = std::find_if(parts.begin(), parts.end(),
+                                 [&](const auto& p) { return p.first == n.part; });
+          if (it == parts.end()) parts.emplace_back(n.part, 0.0), it = parts.end() - 1;
+          it->second += d(i, j) * d(i, j);
+        }
+        entries.emplace_back(std::abs(d(i, j)), n.entry, shown_exp_(i, j), shown_got_(i, j));
+      }
+    if (!parts.empty() && total > 0) {
+      std::sort(parts.begin(), parts.end(),
+                [](const auto& a, const auto& b) { return a.second > b.second; });
+      s << "  where, in case " << shown_i_ << " (the simplest that fails):";
+      int shown = 0;
+      for (const auto& [name, e2] : parts) {
+        if (shown == 4 || e2 < 1e-6 * total) break;
+        s << (shown++ ? "," : "") << " " << name << " " << int(std::lround(100 * e2 / total))
+          << "%";
+      }
+      s << " of the error\n";
+    }
+    std::stable_sort(entries.begin(), entries.end(),
+                     [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+    const std::size_t n_show = std::min<std::size_t>(entries.size(), 6);
+    char line[200];
+    std::snprintf(line, sizeof line, "    %-34s %22s %22s\n", "entry", "expected", "got");
+    s << line;
+    for (std::size_t k = 0; k < n_show; ++k) {
+      std::snprintf(line, sizeof line, "    %-34s %22.15g %22.15g\n",
+                    std::get<1>(entries[k]).c_str(), std::get<2>(entries[k]),
+                    std::get<3>(entries[k]));
+      s << line;
+    }
+    if (entries.size() > n_show)
+      s << "    (" << entries.size() - n_show << " more entries, with smaller errors)\n";
+    return s.str();
+  }
+
+  // The shown case's inputs as code: inline when short; else written as a file under
+  // $SOA_EXERCISE_CASES (make exercises sets it to build/exercises/cases), named for the
+  // exercise and the check.
+  std::string case_code() const {
+    if (shown_inputs_.empty()) return "";
+    const std::string head = "  case " + std::to_string(shown_i_) + " as code";
+    if (std::count(shown_inputs_.begin(), shown_inputs_.end(), '\n') <= 12)
+      return head + " (paste into a program):\n" + indent(shown_inputs_);
+    const char* dir = std::getenv("SOA_EXERCISE_CASES");
+    if (!dir || !*dir) return head + ": set SOA_EXERCISE_CASES=<dir> to have it written out\n";
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? info->test_suite_name() : "case";
+    if (name.rfind("Exercise", 0) == 0) name = name.substr(8);
+    std::string what;
+    for (char ch : what_) what += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+    const std::string path = std::string(dir) + "/" + name + "-" + what.substr(0, 24) + ".cpp";
+    std::FILE* out = std::fopen(path.c_str(), "w");
+    if (!out) return head + ": could not write " + path + "\n";
+    std::fprintf(out,
+                 "// %s, case %d: the simplest random case where your result is wrong.\n"
+                 "// Paste it into a program of your own (it includes exercises.hpp).\n"
+                 "#include <iostream>\n\n#include \"exercises.hpp\"\n\nint main() {\n",
+                 what_.c_str(), shown_i_);
+    std::istringstream in(shown_inputs_);
+    std::string line;
+    while (std::getline(in, line)) std::fprintf(out, "  %s\n", line.c_str());
+    std::fprintf(out, "  // expected (row by row): %s\n}\n", list(shown_exp_).c_str());
+    std::fclose(out);
+    return head + " (paste into a program): " + path + "\n";
+  }
+
+  static std::string short_num(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2g", x);
+    return b;
+  }
+  static std::string indent(const std::string& text) {
+    std::string out, line;
+    std::istringstream in(text);
+    while (std::getline(in, line)) out += "      " + line + "\n";
+    return out;
+  }
+
+  std::string what_;
+  double tol_;
+  Worst worst_;
+  int cases_ = 0, failed_ = 0, examined_ = 0;
+  std::map<unsigned, Count> with_, without_;
+  std::vector<Tally> tallies_;
+  std::string shape_;
+  double worst_r_ = -1, worst_rel_ = 0;
+  int worst_i_ = -1;
+  double shown_r_ = 0;
+  int shown_i_ = -1;
+  MatX<double> shown_got_, shown_exp_;
+  std::string shown_inputs_;
+  Naming naming_;
+};
+
+}  // namespace soa::test
