@@ -58,7 +58,7 @@ Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vec
 /// that give the chain at the state \p x the accelerations \p beta_dot, in two sweeps
 /// (lesson 4, sections 1 and 5):
 /// 1. base to tip, k = n ... 1, from \f$V(n+1) = 0\f$ and \f$\alpha(n+1) = [0; -g]\f$:
-///    \f$\phi(k+1,k)\f$ = `Phi(B.placement * Pose(exp_so3(theta_k * a_k), 0))`, whose
+///    \f$\phi(k+1,k)\f$ = `Phi(B.placement * Pose(exp_so3(theta_k * a_k)))`, whose
 ///    `R()` and `l()` are \f$R = {}^{k+1}R_k\f$ and \f$\ell = {}^{k+1}l(O_{k+1}, O_k)\f$;
 ///    \f[ V(k) = \phi^*(k+1,k)\, V(k+1) + [\beta_k a_k; 0], \qquad
 ///        \alpha(k) = \phi^*(k+1,k)\, \alpha(k+1) + [\dot\beta_k a_k; 0] + a(k), \f]
@@ -93,10 +93,7 @@ MatX<double> mass_matrix_operators(const Operators& op);
 /// \f$\beta = 0\f$): the difference removes gravity, springs and everything else in
 /// \f$\mathcal C\f$ (lesson 4, section 3). Return \f$\mathcal M(\theta)\f$ for the chain
 /// \p m (any hinge types, gravity and springs possible) at the configuration \p theta, with
-/// nv + 1 calls of soa::inverse_dynamics. Do not use soa::OperatorsT. (soa::inverse_dynamics
-/// is a template: pass it `VecX<double>` and `ExternalForces<double>` variables, not Eigen
-/// expressions such as `VecX<double>::Zero(n)` or `{}`, or name the scalar,
-/// `soa::inverse_dynamics<double>(...)`.)
+/// nv + 1 calls of soa::inverse_dynamics. Do not use soa::OperatorsT.
 MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 4.5: the bias from the operators.**

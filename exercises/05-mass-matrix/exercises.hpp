@@ -44,7 +44,7 @@ MatX<double> mass_matrix_diagonal(const Model& m, const VecX<double>& theta,
 /// **Exercise 5.3: the composite rigid body mass matrix of a revolute chain.**
 /// Every hinge of \p m is revolute about the unit axis \f$a_k\f$ = `m.body(k).hinge.axis`,
 /// so \f$H^*(k) = [a_k; 0]\f$ and the mass matrix is n x n. With \f$\phi(k+1,k)\f$ =
-/// `Phi(m.body(k).placement * Pose(exp_so3(theta[k-1] * a_k), 0))` and the composite
+/// `Phi(m.body(k).placement * Pose(exp_so3(theta[k-1] * a_k)))` and the composite
 /// inertias \f$R(k)\f$ (exercise 5.1 or soa::composite_inertias), return (lesson 5,
 /// section 3), in \f$O(N^2)\f$,
 /// \f[ \mathcal M(k,k) = H(k) R(k) H^*(k), \qquad

@@ -34,7 +34,7 @@ VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& be
     const auto i = std::size_t(k - 1);
     const Vec3<double> a = B.hinge.axis;
     const double th = x.theta[B.q_offset], be = x.beta[B.v_offset], bd = beta_dot[B.v_offset];
-    phi[i] = Phi(B.placement * Pose(exp_so3<double>(th * a), Vec3<double>::Zero()));
+    phi[i] = Phi(B.placement * Pose(exp_so3(th * a)));
     const Mat3<double> Rt = phi[i].R().transpose();
     const Vec3<double> w_parent = Rt * Vec3<double>(V_parent.angular());  // omega(k+1), O_k
     const Vec3<double> l = Rt * phi[i].l();                               // l(O_{k+1}, O_k), O_k

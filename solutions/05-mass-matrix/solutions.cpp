@@ -27,8 +27,7 @@ MatX<double> crb_mass_matrix_revolute(const Model& m, const VecX<double>& theta)
   std::vector<Phi> phi;
   for (int k = 1; k <= n; ++k) {
     const Body& B = m.body(k);
-    phi.push_back(Phi(B.placement * Pose(exp_so3<double>(theta[B.q_offset] * B.hinge.axis),
-                                         Vec3<double>::Zero())));
+    phi.push_back(Phi(B.placement * Pose(exp_so3(theta[B.q_offset] * B.hinge.axis))));
   }
   const std::vector<SpatialInertia> R = composite_inertias(m, phi);
   MatX<double> M(n, n);

@@ -41,4 +41,11 @@ AccelerationT<S> coriolis(DerivativeFrame H, const VelocityT<S>& V_AB, const Vel
   return AccelerationT<S>(Vec3<S>::Zero(), lin);
 }
 
+/// coriolis() with \p l_BC an Eigen expression: forwards to coriolis(..., const Vec3<S>&).
+template <class S, class D>
+AccelerationT<S> coriolis(DerivativeFrame H, const VelocityT<S>& V_AB, const VelocityT<S>& V_BC,
+                          const Eigen::MatrixBase<D>& l_BC) {
+  return coriolis(H, V_AB, V_BC, Vec3<S>(l_BC));
+}
+
 }  // namespace soa

@@ -61,6 +61,14 @@ Vec3<S> dexp_inv_right(const Vec3<S>& delta, const Vec3<S>& omega) {
   return omega + delta.cross(omega) / S(2) + c * delta.cross(delta.cross(omega));
 }
 
+/// dexp_inv_right() of Eigen expressions: forwards to dexp_inv_right(const Vec3<S>&, ...).
+template <class D1, class D2>
+Vec3<typename D1::Scalar> dexp_inv_right(const Eigen::MatrixBase<D1>& delta,
+                                         const Eigen::MatrixBase<D2>& omega) {
+  using S = typename D1::Scalar;
+  return dexp_inv_right(Vec3<S>(delta), Vec3<S>(omega));
+}
+
 /// One step of RK4 on the free body, Runge-Kutta-Munthe-Kaas form: the attitude is moved by
 /// the exponential of the RK4 combination of local rotation-vector rates, so it stays a
 /// unit quaternion by construction (products of unit quaternions; the final normalization

@@ -17,6 +17,9 @@ class PoseT {
   PoseT() : R_(Mat3<S>::Identity()), l_(Vec3<S>::Zero()) {}
   /// \f${}^A T_B\f$ from \f${}^A R_B\f$ and \f${}^A l(A,B)\f$ (B's origin in A coordinates).
   PoseT(const Mat3<S>& R, const Vec3<S>& l) : R_(R), l_(l) {}
+  /// The pure rotation \f${}^A T_B = ({}^A R_B, 0)\f$: B's origin at A's
+  /// (`Pose(exp_so3(theta * a))`).
+  explicit PoseT(const Mat3<S>& R) : R_(R), l_(Vec3<S>::Zero()) {}
 
   const Mat3<S>& R() const { return R_; }  ///< \f${}^A R_B\f$
   const Vec3<S>& l() const { return l_; }  ///< \f${}^A l(A,B)\f$

@@ -75,6 +75,12 @@ VelocityT<S> vee_se3(const Mat4<S>& m) {
   return VelocityT<S>(vee<S>(m.template topLeftCorner<3, 3>()), m.template topRightCorner<3, 1>());
 }
 
+/// vee_se3() of an Eigen expression: forwards to vee_se3(const Mat4<S>&).
+template <class D>
+VelocityT<typename D::Scalar> vee_se3(const Eigen::MatrixBase<D>& m) {
+  return vee_se3(Mat4<typename D::Scalar>(m));
+}
+
 /// \f$\mathrm{Ad}({}^x T_y) = \phi^*(y,x) = \begin{pmatrix} R & 0 \\ \tilde l R & R
 /// \end{pmatrix}\f$, the adjoint of SE(3) (slide 63; lesson 1, "The Lie group connection: SE(3)"), defined by
 /// \f$(T\hat\xi T^{-1})^\vee = \mathrm{Ad}(T)\,\xi\f$. For \f$T = {}^x T_y\f$ it takes a
@@ -118,6 +124,12 @@ Mat3<S> dexp_so3(const Vec3<S>& w) {
   return Mat3<S>::Identity() + g_series(2, theta) * W + g_series(3, theta) * W * W;
 }
 
+/// dexp_so3() of an Eigen expression: forwards to dexp_so3(const Vec3<S>&).
+template <class D>
+Mat3<typename D::Scalar> dexp_so3(const Eigen::MatrixBase<D>& w) {
+  return dexp_so3(Vec3<typename D::Scalar>(w));
+}
+
 /// \f$\mathrm{dexp}_{SO(3)}^{-1}(w) = I - \tfrac12\tilde w + D(\theta)\,\tilde w^2\f$ with
 /// \f$D = \frac{1}{\theta^2}\big(1 - \frac{\theta\sin\theta}{2(1-\cos\theta)}\big) =
 /// \frac{g_3 - 2 g_4}{2 g_2}\f$, the second form free of cancellation (lesson 1,
@@ -128,6 +140,12 @@ Mat3<S> dexp_so3_inv(const Vec3<S>& w) {
   const Mat3<S> W = tilde(w);
   const S D = (g_series(3, theta) - S(2) * g_series(4, theta)) / (S(2) * g_series(2, theta));
   return Mat3<S>::Identity() - W / S(2) + D * W * W;
+}
+
+/// dexp_so3_inv() of an Eigen expression: forwards to dexp_so3_inv(const Vec3<S>&).
+template <class D>
+Mat3<typename D::Scalar> dexp_so3_inv(const Eigen::MatrixBase<D>& w) {
+  return dexp_so3_inv(Vec3<typename D::Scalar>(w));
 }
 
 /// \f$\exp(\hat\xi) = \begin{pmatrix} \exp(\tilde\omega) & \mathrm{dexp}_{SO(3)}(\omega)\, v

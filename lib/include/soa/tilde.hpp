@@ -17,11 +17,23 @@ Mat3<S> tilde(const Vec3<S>& x) {
   return m;
 }
 
+/// tilde() of an Eigen expression (`tilde(X.angular())`): forwards to tilde(const Vec3<S>&).
+template <class D>
+Mat3<typename D::Scalar> tilde(const Eigen::MatrixBase<D>& x) {
+  return tilde(Vec3<typename D::Scalar>(x));
+}
+
 /// The inverse of tilde(): the 3-vector of the skew-symmetric part of \p m,
 /// \f$ \mathrm{vee}(m) = \tfrac12 (m - m^*)^\vee \f$.
 template <class S>
 Vec3<S> vee(const Mat3<S>& m) {
   return Vec3<S>(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)) / S(2);
+}
+
+/// vee() of an Eigen expression (`vee(R - R.transpose())`): forwards to vee(const Mat3<S>&).
+template <class D>
+Vec3<typename D::Scalar> vee(const Eigen::MatrixBase<D>& m) {
+  return vee(Mat3<typename D::Scalar>(m));
 }
 
 }  // namespace soa

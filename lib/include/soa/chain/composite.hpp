@@ -111,4 +111,13 @@ void inverse_dynamics_composite(const ModelT<S>& m, const StateT<S>& x, const Ve
   }
 }
 
+/// inverse_dynamics_composite() of an Eigen expression \p beta_dot: forwards to the VecX one.
+template <class S, class D>
+void inverse_dynamics_composite(const ModelT<S>& m, const StateT<S>& x,
+                                const Eigen::MatrixBase<D>& beta_dot,
+                                const ExternalForces<S>& f_ext, WorkspaceT<S>& ws,
+                                std::vector<SpatialInertiaT<S>>& R, VecX<S>& T) {
+  inverse_dynamics_composite(m, x, VecX<S>(beta_dot), f_ext, ws, R, T);
+}
+
 }  // namespace soa

@@ -223,4 +223,12 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   if (!beta_dot.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
 }
 
+/// forward_dynamics() of an Eigen expression \p T: forwards to the `const VecX<S>&` one.
+template <class S, class D>
+void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const Eigen::MatrixBase<D>& T,
+                      const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, ForwardDynamicsT<S>& fd,
+                      VecX<S>& beta_dot) {
+  forward_dynamics(m, x, VecX<S>(T), f_ext, ws, fd, beta_dot);
+}
+
 }  // namespace soa

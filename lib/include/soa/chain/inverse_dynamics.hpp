@@ -139,4 +139,11 @@ void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& bet
   }
 }
 
+/// inverse_dynamics() of an Eigen expression \p beta_dot: forwards to the `const VecX<S>&` one.
+template <class S, class D>
+void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const Eigen::MatrixBase<D>& beta_dot,
+                      const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, VecX<S>& T) {
+  inverse_dynamics(m, x, VecX<S>(beta_dot), f_ext, ws, T);
+}
+
 }  // namespace soa

@@ -25,6 +25,13 @@ void jacobian(const ModelT<S>& m, const VecX<S>& theta, const WorkspaceT<S>& ws,
   }
 }
 
+/// jacobian() of an Eigen expression \p theta: forwards to jacobian(m, const VecX<S>&, ...).
+template <class S, class D>
+void jacobian(const ModelT<S>& m, const Eigen::MatrixBase<D>& theta, const WorkspaceT<S>& ws, int k,
+              const PoseT<S>& frame, Eigen::Matrix<S, 6, Eigen::Dynamic>& J) {
+  jacobian(m, VecX<S>(theta), ws, k, frame, J);
+}
+
 /// \f$\dot J\beta\f$ of the same frame: its spatial acceleration when \f$\dot\beta = 0\f$
 /// and there is no gravity, so that \f$\alpha(F) = J\dot\beta + \dot J\beta\f$. From
 /// \f$\alpha(k)\f$ at \f$\dot\beta = 0\f$ moved rigidly to F (lesson 2's point acceleration):

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "soa/chain/workspace.hpp"
 #include "soa/spatial_cross.hpp"
@@ -64,6 +65,12 @@ void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
     const BodyT<S>& B = m.body(k);
     ws.phi[k - 1] = joint_phi(B, theta.data() + B.q_offset);
   }
+}
+
+/// update_phi() of an Eigen expression \p theta: forwards to update_phi(m, const VecX<S>&, ws).
+template <class S, class D>
+void update_phi(const ModelT<S>& m, const Eigen::MatrixBase<D>& theta, WorkspaceT<S>& ws) {
+  update_phi(m, VecX<S>(theta), ws);
 }
 
 /// Poses by the scatter recursion (slides 25-27), base to tip:
@@ -200,6 +207,22 @@ void update_accelerations(const ModelT<S>& m, const StateT<S>& x, const S* beta_
     ws.alpha[k - 1] = alpha;
     alpha_parent = alpha;
   }
+}
+
+/// update_accelerations() with `nullptr` (\f$\dot\beta = 0\f$): forwards to the `const S*` one.
+template <class S, class N, std::enable_if_t<std::is_null_pointer_v<N>, int> = 0>
+void update_accelerations(const ModelT<S>& m, const StateT<S>& x, N,
+                          const AccelerationT<S>& alpha_base, WorkspaceT<S>& ws) {
+  update_accelerations(m, x, static_cast<const S*>(nullptr), alpha_base, ws);
+}
+
+/// update_accelerations() of a vector or Eigen expression \p beta_dot: forwards its data().
+template <class S, class D>
+void update_accelerations(const ModelT<S>& m, const StateT<S>& x,
+                          const Eigen::MatrixBase<D>& beta_dot, const AccelerationT<S>& alpha_base,
+                          WorkspaceT<S>& ws) {
+  const VecX<S> bd(beta_dot);
+  update_accelerations(m, x, bd.data(), alpha_base, ws);
 }
 
 /// The base acceleration that stands for gravity: \f$\alpha(n+1) = [0; -g]\f$ (lesson 4).

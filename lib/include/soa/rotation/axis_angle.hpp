@@ -22,6 +22,12 @@ Mat3<S> exp_so3(const Vec3<S>& w) {
   return Mat3<S>::Identity() + sinc(theta) * W + (half_sinc * half_sinc / S(2)) * W * W;
 }
 
+/// exp_so3() of an Eigen expression (`exp_so3(theta * a)`): forwards to exp_so3(const Vec3<S>&).
+template <class D>
+Mat3<typename D::Scalar> exp_so3(const Eigen::MatrixBase<D>& w) {
+  return exp_so3(Vec3<typename D::Scalar>(w));
+}
+
 /// \f$\exp(\theta\tilde n)\f$ for a unit axis \f$n\f$ (slide 19):
 /// \f$\cos\theta\, I + (1-\cos\theta)\, n n^* + \sin\theta\, \tilde n\f$ — the
 /// hinge rotation of the chain recursions, cheaper than exp_so3() when the axis is known to
@@ -44,6 +50,12 @@ Mat3<S> exp_unit_axis(const Vec3<S>& n, S theta) {
   R(1, 2) = yz - sx;
   R(2, 1) = yz + sx;
   return R;
+}
+
+/// exp_unit_axis() of an Eigen expression: forwards to exp_unit_axis(const Vec3<S>&, S).
+template <class D>
+Mat3<typename D::Scalar> exp_unit_axis(const Eigen::MatrixBase<D>& n, typename D::Scalar theta) {
+  return exp_unit_axis(Vec3<typename D::Scalar>(n), theta);
 }
 
 /// The logarithm: the rotation vector \f$w = \theta n\f$, \f$\theta \in [0, \pi]\f$, with
@@ -70,6 +82,12 @@ Vec3<S> log_so3(const Mat3<S>& R) {
   Vec3<S> n = B.col(k).normalized();
   if (n.dot(s) < S(0)) n = -n;
   return theta * n;
+}
+
+/// log_so3() of an Eigen expression (`log_so3(R1 * R2)`): forwards to log_so3(const Mat3<S>&).
+template <class D>
+Vec3<typename D::Scalar> log_so3(const Eigen::MatrixBase<D>& R) {
+  return log_so3(Mat3<typename D::Scalar>(R));
 }
 
 /// Axis-angle \f$(n, \theta)\f$: turning through \f$\theta\f$ about the unit axis \f$n\f$.

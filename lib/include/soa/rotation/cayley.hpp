@@ -17,6 +17,12 @@ Mat3<S> cayley(const Vec3<S>& c) {
   return GibbsT<S>{c / S(2)}.matrix();
 }
 
+/// cayley() of an Eigen expression: forwards to cayley(const Vec3<S>&).
+template <class D>
+Mat3<typename D::Scalar> cayley(const Eigen::MatrixBase<D>& c) {
+  return cayley(Vec3<typename D::Scalar>(c));
+}
+
 /// The inverse Cayley map: \f$\tilde c = 2 (R - I)(R + I)^{-1}\f$, singular where \f$R + I\f$
 /// is, at \f$\theta = \pi\f$ (soa::Error as for GibbsT).
 template <class S>
@@ -26,6 +32,12 @@ Vec3<S> cayley_inverse(const Mat3<S>& R) {
     throw Error("Cayley parameters: undefined at theta = pi (|q0| = " +
                 std::to_string(double(std::abs(q.q0()))) + ")");
   return S(2) * GibbsT<S>::from_quaternion(q).g;
+}
+
+/// cayley_inverse() of an Eigen expression: forwards to cayley_inverse(const Mat3<S>&).
+template <class D>
+Vec3<typename D::Scalar> cayley_inverse(const Eigen::MatrixBase<D>& R) {
+  return cayley_inverse(Mat3<typename D::Scalar>(R));
 }
 
 /// Cayley parameters \f$c = 2\tan(\theta/2)\, n\f$: three numbers, non-singular near the

@@ -30,6 +30,12 @@ bool is_rotation(const Mat3<S>& R, S tol) {
          std::abs(R.determinant() - S(1)) <= tol;
 }
 
+/// is_rotation() of an Eigen expression: forwards to is_rotation(const Mat3<S>&, S).
+template <class D>
+bool is_rotation(const Eigen::MatrixBase<D>& R, typename D::Scalar tol) {
+  return is_rotation(Mat3<typename D::Scalar>(R), tol);
+}
+
 /// \f$\sin(x)/x\f$, exact to rounding for every x including 0.
 template <class S>
 S sinc(S x) {

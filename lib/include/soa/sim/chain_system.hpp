@@ -41,6 +41,13 @@ void retract(const ModelT<S>& m, const VecX<S>& theta0, const VecX<S>& u, VecX<S
   }
 }
 
+/// retract() of Eigen expressions \p theta0, \p u: forwards to retract(m, const VecX<S>&, ...).
+template <class S, class D1, class D2>
+void retract(const ModelT<S>& m, const Eigen::MatrixBase<D1>& theta0,
+             const Eigen::MatrixBase<D2>& u, VecX<S>& theta) {
+  retract(m, VecX<S>(theta0), VecX<S>(u), theta);
+}
+
 /// The rate of the local coordinates \f$\dot u\f$ at \f$\theta = \theta_0 \oplus u\f$ with
 /// velocity \p beta: \f$\mathrm{dexp}^{-1}_{-u_\omega}\,\omega\f$ for a quaternion hinge
 /// (Runge-Kutta-Munthe-Kaas, as the free body of lesson 2), \f$R(\mathfrak q)\,v\f$ for the
