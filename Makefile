@@ -85,7 +85,7 @@ else
 	  rm -rf $$t; \
 	  cmake -S . -B $(EX_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSOA_SANITIZE_STUDENT=$$san \
-	    -DSOA_PRECISIONS=double -DSOA_CHECK_STUBS=OFF \
+	    -DSOA_PRECISIONS=double -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
 	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
 	    || { cat $(EX_DIR).cmake.log; exit 1; }; \
 	fi
@@ -98,7 +98,7 @@ else
 	  rm -f $(EX_DIR)/tests/ex$$nn-exercises; \
 	  if cmake --build $(EX_DIR) -j $(JOBS) --target ex$$nn-exercises \
 	       >$(EX_DIR)/ex$$nn-exercises.log 2>&1; then \
-	    mkdir -p $(EX_DIR)/cases; SOA_EXERCISE_CASES=$(CURDIR)/$(EX_DIR)/cases \
+	    mkdir -p $(EX_DIR)/cases; SOA_EXERCISE_CASES=$(EX_DIR)/cases \
 	    ASAN_OPTIONS=detect_leaks=0 $(EX_DIR)/tests/ex$$nn-exercises --report \
 	      --header $$dir/exercises.hpp $(EX_FILTER) \
 	      || echo "  the test program stopped: the message above names the line (see also $(EX_DIR)/ex$$nn-exercises.log)"; \

@@ -17,8 +17,11 @@ set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
 option(SOA_SANITIZE_STUDENT "ASan + UBSan for the exercises' code (make exercises)" OFF)
 set(SOA_STUDENT_SAN "")
 if(SOA_SANITIZE_STUDENT)
+  # Eigen frees with its own aligned allocator under ASan (__SANITIZE_ADDRESS__) but with
+  # free() elsewhere: the instrumented and the plain code must agree, and malloc is 16-byte
+  # aligned with or without ASan on 64-bit Linux.
   set(SOA_STUDENT_SAN -fsanitize=address,undefined -fno-sanitize-recover=all
-                      -fno-omit-frame-pointer)
+                      -fno-omit-frame-pointer -DEIGEN_MALLOC_ALREADY_ALIGNED=1)
 endif()
 
 set(SOA_PCH_DIR ${CMAKE_CURRENT_LIST_DIR})

@@ -32,9 +32,7 @@ class Random {
   Vec3<S> vec3() { return Vec3<S>(normal(), normal(), normal()); }
   Vec3<S> unit3() { return vec3().normalized(); }
   /// A rotation uniform on SO(3) (from a normalized 4-vector of normals).
-  Mat3<S> rotation() {
-    return UnitQuaternionT<S>(vec3(), normal()).matrix();
-  }
+  Mat3<S> rotation() { return UnitQuaternionT<S>(vec3(), normal()).matrix(); }
   PhiT<S> phi() { return PhiT<S>(rotation(), vec3()); }
   VelocityT<S> velocity() { return VelocityT<S>(vec3(), vec3()); }
   AccelerationT<S> acceleration() { return AccelerationT<S>(vec3(), vec3()); }
@@ -55,6 +53,12 @@ class Random {
   std::mt19937_64 gen_;
 };
 
+/// True in the exercise table (make exercises): the worst residuals are not printed.
+inline bool& quiet() {
+  static bool q = false;
+  return q;
+}
+
 /// The worst of many residuals, with the case where it happened; printed on destruction
 /// (as the test's report) and recorded as a test property.
 class Worst {
@@ -62,7 +66,7 @@ class Worst {
   explicit Worst(std::string what) : what_(std::move(what)) {}
   ~Worst() {
     if (where_ < 0) return;  // no case ran to the end (the test stopped on an exception)
-    std::printf("[ worst    ] %-52s %.3e (case %d)\n", what_.c_str(), value_, where_);
+    if (!quiet()) std::printf("[ worst    ] %-52s %.3e (case %d)\n", what_.c_str(), value_, where_);
     testing::Test::RecordProperty("worst_" + what_, std::to_string(value_));
   }
   /// Records \p residual of case \p i; NaN counts as infinitely bad.
