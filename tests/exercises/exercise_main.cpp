@@ -47,7 +47,7 @@ std::map<std::string, std::string> read_meta(const char* header) {
   std::map<std::string, std::string> meta;
   if (!header) return meta;
   std::ifstream in(header);
-  const std::regex title(R"(\*\*Exercise (\d+\.\d+):)");
+  const std::regex title(R"(\*\*Exercise (\d+\.\d+)[: ])");
   const std::regex level(
       R"(\*Level (\d) of 3, about (\d+) min(?:; uses (\d+\.\d+(?:(?:, | and )\d+\.\d+)*))?)");
   std::string line, current;

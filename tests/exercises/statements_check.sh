@@ -1,0 +1,65 @@
+#!/bin/sh
+# ctest exercises.statements: what the issue asks of every exercise, checked on the sources.
+#   - each statement (exercises/NN-topic/exercises.hpp) has its level, time and what it uses
+#     ("*Level L of 3, about M min; uses N.J.*") under its title, and "uses" names exercises
+#     that exist;
+#   - each lesson has at least two exercises of level 3 (worked out: derive, predict, find the
+#     bug), and each of those a ladder of at least three hints in hints.md with the lesson
+#     section that teaches it ("Taught in:");
+#   - the lesson's README table has a row for each exercise;
+#   - the lesson program points to each exercise where its material is taught ("now do N.K");
+#   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh).
+#   statements_check.sh <source dir> <scratch dir>
+set -eu
+root=$1
+scratch=$2
+cd "$root"
+fail=0
+say() { echo "$*"; fail=1; }
+all=$(grep -ho '\*\*Exercise [0-9]*\.[0-9]*[: ]' exercises/*/exercises.hpp | sed 's/[^0-9.]//g')
+for dir in exercises/[0-9][0-9]-*/; do
+  dir=${dir%/}
+  nn=$(basename "$dir" | cut -c1-2)
+  lesson=${nn#0}
+  hpp=$dir/exercises.hpp
+  exs=$(grep -o '\*\*Exercise [0-9]*\.[0-9]*[: ]' "$hpp" | sed 's/[^0-9.]//g')
+  level3=0
+  for ex in $exs; do
+    meta=$(grep -A3 "\*\*Exercise $ex[: ]" "$hpp" | grep -o '\*Level [1-3] of 3, about [0-9]* min[^*]*\*' | head -1 || true)
+    if [ -z "$meta" ]; then say "$hpp: exercise $ex has no '*Level L of 3, about M min*' line"; continue; fi
+    case "$meta" in *"Level 3 of 3"*) level3=$((level3 + 1)) ;; esac
+    for used in $(echo "$meta" | sed -n 's/.*uses \(.*\)\.\*$/\1/p' | grep -o '[0-9]*\.[0-9]*'); do
+      echo "$all" | grep -qx "$used" || say "$hpp: exercise $ex uses $used, which does not exist"
+    done
+    grep -q "^| $ex |" "$dir/README.md" || say "$dir/README.md: no row for exercise $ex"
+    prog=$(ls lessons/$nn-*/lesson.cpp 2>/dev/null | head -1)
+    exre=$(echo "$ex" | sed 's/\./\\./')
+    if [ -n "$prog" ] && ! grep -i "now do" "$prog" | grep -q "\b$exre\b"; then
+      say "$prog: no 'now do $ex' where its material is taught"
+    fi
+    case "$meta" in
+      *"Level 3 of 3"*)
+        hints=$dir/hints.md
+        if [ ! -f "$hints" ] || ! grep -q "^## $ex " "$hints"; then
+          say "$dir: exercise $ex (level 3) has no hints in hints.md"
+          continue
+        fi
+        section=$(awk -v ex="$ex" '/^## /{on = ($2 == ex)} on' "$hints")
+        echo "$section" | grep -q '^Taught in: ' || say "$hints: $ex does not say where it is taught"
+        n=$(echo "$section" | grep -c '^[0-9][0-9]*\. ' || true)
+        [ "$n" -ge 3 ] || say "$hints: $ex has $n hints, fewer than 3"
+        # The ladder, one at a time.
+        state=$scratch/hints-$ex
+        rm -rf "$state"
+        first=$(sh tests/exercises/hint.sh "$ex" "$state")
+        second=$(sh tests/exercises/hint.sh "$ex" "$state")
+        echo "$first" | grep -q "(hint 1 of $n;" || say "HINT=$ex: the first call does not show hint 1 of $n"
+        echo "$first" | grep -q '^2\. ' && say "HINT=$ex: the first call shows hint 2 already"
+        echo "$second" | grep -q '^2\. ' || say "HINT=$ex: the second call does not show hint 2"
+        ;;
+    esac
+  done
+  [ "$level3" -ge 2 ] || say "$hpp: lesson $lesson has $level3 exercises of level 3 (worked out), fewer than 2"
+done
+[ $fail = 0 ] && echo "every statement has its level, time and uses; hints, rows and pointers are in place"
+exit $fail
