@@ -11,6 +11,12 @@
 /// `phi.R()`, `phi.l()`, `phi.matrix()` (the 6x6), `phi.transpose_apply(V)` (\f$\phi^* V\f$),
 /// `phi.apply(f)` (\f$\phi f\f$). Every \f$V(k)\f$ is in the coordinates of \f$O_k\f$.
 ///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out: derive the formula, predict then check, or find the bug in given code),
+/// the time it usually takes, and the exercises it builds on ("uses 3.2": the same idea, done
+/// there first; never a call to your code of that exercise). `make exercises HINT=3.7` prints
+/// the next hint of an exercise (exercises/03-serial-chain-kinematics/hints.md).
+///
 /// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
 /// and run `make exercises`. Do not call the library function an exercise reproduces (named
 /// in its statement); the other library functions are yours to use.
@@ -27,6 +33,7 @@ namespace soa::ex03 {
 using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
 /// **Exercise 3.1: the joint map \f$H^*(k)\f$ of a hinge.**
+/// *Level 1 of 3, about 20 min.*
 /// Return the 6 x \f$n_k\f$ joint map of \p hinge at its coordinates \p theta
 /// (\f$\theta(k)\f$, `hinge.nq()` entries), so that the velocity of \f$O_k\f$ relative to
 /// \f$O_k^+\f$, in \f$O_k\f$ coordinates, is \f$\Delta_V = H^*(k)\,\beta(k)\f$ (lesson 3,
@@ -43,6 +50,7 @@ using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 Matrix6X joint_map(const Hinge& hinge, const VecX<double>& theta);
 
 /// **Exercise 3.2: the velocity scatter recursion.**
+/// *Level 1 of 3, about 15 min.*
 /// A chain of n = `phi.size()` bodies: `phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative
 /// to the inertial frame) and `dV[k-1]` is the hinge velocity \f$H^*(k)\beta(k)\f$ of body k.
 /// Return the body velocities \f$V(k)\f$ (entry `k - 1`), base to tip (lesson 3, section 6):
@@ -53,6 +61,7 @@ std::vector<Velocity> scatter_velocities(const std::vector<Phi>& phi,
                                          const std::vector<Velocity>& dV);
 
 /// **Exercise 3.3: the shift operator \f$\mathcal E_\phi\f$.**
+/// *Level 1 of 3, about 10 min.*
 /// For the same `phi` as in 3.2, return the 6n x 6n matrix \f$\mathcal E_\phi\f$ whose only
 /// non-zero blocks are \f$\phi(k+1,k)\f$ (the 6x6 `phi[k-1].matrix()`) at block row k+1,
 /// block column k, for k = 1 ... n-1 (lesson 3, section 9). Block k is rows and columns
@@ -61,6 +70,7 @@ std::vector<Velocity> scatter_velocities(const std::vector<Phi>& phi,
 MatX<double> shift_operator(const std::vector<Phi>& phi);
 
 /// **Exercise 3.4: the operator \f$\phi\f$, block by block.**
+/// *Level 2 of 3, about 20 min; uses 3.3.*
 /// Return \f$\phi = (I - \mathcal E_\phi)^{-1}\f$, without inverting a matrix: it is block
 /// lower triangular with the blocks
 /// \f[ \phi(i,j) = \phi(i,i-1)\,\phi(i-1,i-2) \cdots \phi(j+1,j) \ (i > j), \qquad
@@ -71,6 +81,7 @@ MatX<double> shift_operator(const std::vector<Phi>& phi);
 MatX<double> phi_operator(const std::vector<Phi>& phi);
 
 /// **Exercise 3.5: the Jacobian of a frame.**
+/// *Level 2 of 3, about 40 min; uses 3.4.*
 /// A frame F is fixed on body \p k of the chain \p m at the pose \p frame \f$= {}^{O_k}T_F\f$.
 /// Return its Jacobian J (6 x `m.nv()`), \f$V(F) = J\beta\f$ with \f$V(F)\f$ in F
 /// coordinates: \f$J = B^*\phi^*H^*\f$ (lesson 3, section 10), whose column block of hinge i
@@ -85,6 +96,7 @@ MatX<double> phi_operator(const std::vector<Phi>& phi);
 Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const Pose& frame);
 
 /// **Exercise 3.6: the Coriolis term \f$a(k)\f$.**
+/// *Level 2 of 3, about 30 min; uses 3.2.*
 /// Body k+1 moves with \p V_parent \f$= V(k+1)\f$ (in \f$O_{k+1}\f$ coordinates; zero for
 /// k = n), hinge k with \p dV \f$= \Delta_V = H^*(k)\beta(k) = [\Delta_\omega; \Delta_v]\f$
 /// and \p Hdot_beta \f$= \mathring H^*(k)\beta(k)\f$ (both in \f$O_k\f$ coordinates), and
@@ -101,5 +113,50 @@ Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const 
 /// Reproduces soa::coriolis_term (do not call it).
 Acceleration coriolis_acceleration(const Phi& phi, const Velocity& V_parent, const Velocity& dV,
                                    const Acceleration& Hdot_beta);
+
+/// The result of exercise 3.7: the joint map of a planar hinge and the rate of its entries.
+struct PlanarJointMap {
+  Matrix6X H_star;         ///< \f$H^*(\theta)\f$, 6 x 3, column i for \f$\beta_i\f$
+  Acceleration Hdot_beta;  ///< \f$\mathring H^*(\theta)\,\beta\f$, in \f$O_k\f$ coordinates
+};
+
+/// **Exercise 3.7: derive the joint map of a planar hinge.**
+/// *Level 3 of 3, about 45 min; uses 3.1.*
+/// A planar hinge lets body k turn about a unit axis \f$a\f$ and slide in the plane
+/// perpendicular to it (a puck on a table, a mobile robot on the floor). Its coordinates
+/// \f$\theta = (\theta_1, \theta_2, \theta_3)\f$ are an angle and two offsets: with the unit
+/// vector \p b \f$= b \perp a\f$ and \f$c = a \times b\f$, the joint transform is
+/// \f[ {}^{O_k^+}T_{O_k}(\theta) = (R,\ l), \qquad R = e^{\theta_1 \tilde a}, \qquad
+///     l = {}^{O_k^+}l(O_k^+, O_k) = \theta_2\, b + \theta_3\, c , \f]
+/// with \f$a\f$, \f$b\f$, \f$c\f$ and \f$l\f$ in \f$O_k^+\f$ coordinates (the axis of
+/// \f$R\f$ has the same coordinates \f$a\f$ in \f$O_k\f$), and \f$\beta = \dot\theta\f$
+/// (\p theta, \p beta: three entries each). The library has no such hinge: derive and return
+/// (lesson 3, sections 2 and 7)
+/// - `H_star`: the 6 x 3 joint map \f$H^*(\theta)\f$, with \f$\Delta_V = H^*(\theta)\,\beta\f$
+///   the spatial velocity of \f$O_k\f$ relative to \f$O_k^+\f$ **in \f$O_k\f$ coordinates**,
+///   angular part first (the definition of lesson 1: \f$\tilde\omega = R^*\dot R\f$,
+///   \f$v = R^*\dot l\f$);
+/// - `Hdot_beta`: \f$\mathring H^*(\theta)\,\beta = \big(\tfrac{d}{dt} H^*(\theta(t))\big)\,
+///   \beta\f$ along \f$\dot\theta = \beta\f$ (the rate of the entries of \f$H^*\f$, seen from
+///   \f$O_k\f$, times \f$\beta\f$: the term that enters \f$a(k)\f$, as the universal hinge's
+///   does).
+///
+/// Both in closed form, without differencing numerically (the test checks them to rounding).
+/// `soa::exp_so3<double>(theta[0] * a)` is \f$e^{\theta_1\tilde a}\f$.
+PlanarJointMap planar_joint_map(const Vec3<double>& a, const Vec3<double>& b,
+                                const Vec3<double>& theta, const Vec3<double>& beta);
+
+/// **Exercise 3.8: find the bug: the velocity of a point of the chain.**
+/// *Level 3 of 3, about 30 min; uses 3.2.*
+/// A point P is fixed on body \p k of the chain \p m at \p p \f$= {}^{O_k}l(O_k, P)\f$, in
+/// \f$O_k\f$ coordinates (a tool tip, a marker). Return its velocity in inertial coordinates,
+/// \f${}^I v(P) = \tfrac{d}{dt}\,{}^I l(I, P)\f$, at the state \p x (lesson 3, sections 5
+/// and 6; lesson 1, moving a spatial velocity to another point).
+///
+/// The stub in exercises.cpp already holds code for it, after the `throw` line: it compiles,
+/// it runs, and it has **one** bug. Delete the `throw` line, run the test (its report says
+/// what your wrong answer looks like), then find the bug and fix it. Any library function
+/// may be used.
+Vec3<double> point_velocity(const Model& m, const State& x, int k, const Vec3<double>& p);
 
 }  // namespace soa::ex03

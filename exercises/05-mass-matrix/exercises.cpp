@@ -26,4 +26,16 @@ MatX<double> decomposition(const Operators& op) {
   throw exercise::NotDone("5.4 decomposition");
 }
 
+Mat6<double> phi_M_phi_star_block(const std::vector<Phi>& phi, const std::vector<SpatialInertia>& R,
+                                  int i, int j) {
+  (void)phi, (void)R, (void)i, (void)j;
+  throw exercise::NotDone("5.5 phi_M_phi_star_block");
+}
+
+MatX<double> slider_mass_matrix(const std::vector<double>& mass,
+                                const std::vector<Vec3<double>>& axis) {
+  (void)mass, (void)axis;
+  throw exercise::NotDone("5.6 slider_mass_matrix");
+}
+
 }  // namespace soa::ex05

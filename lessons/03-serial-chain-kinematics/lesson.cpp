@@ -272,6 +272,10 @@ int main(int argc, char** argv) {
   /// of the joint transform along a motion (finite differences), \f$\dot\theta\f$ against
   /// soa::HingeT::theta_dot(), and \f$\mathring H^*\beta\f$ against the finite difference of
   /// \f$H^*(\theta(t))\,\beta\f$ at fixed \f$\beta\f$.
+  ///
+  /// Now do exercise 3.1, the joint map of every hinge type, then 3.7: derive the joint map
+  /// of a planar hinge (a turn and two slides) and the rate of its columns
+  /// (`exercises/03-serial-chain-kinematics/exercises.hpp`).
   checks.section("2. Hinges and their joint maps H*(k)");
   const Vec3d a1 = Vec3d(1.0, 2.0, 2.0) / 3.0, a2 = Vec3d(0.0, 0.6, -0.8);
   std::printf("  %-10s %3s %3s   H*(k) at the test configuration\n", "hinge", "nq", "nv");
@@ -460,6 +464,9 @@ int main(int argc, char** argv) {
   /// below is the whole algorithm; soa::update_velocities() runs it in the library. Both are
   /// checked against the velocities of the poses of section 5 along the motion \f$\theta(t)\f$
   /// (slides 32 and 35, by finite differences).
+  ///
+  /// Now do exercise 3.2, this recursion on its own, then 3.8: find the bug in code that
+  /// gives the inertial velocity of a point of the chain.
   checks.section("6. Velocities: the scatter recursion");
   std::vector<soa::Velocity> V(chain.n());
   {
@@ -530,6 +537,8 @@ int main(int argc, char** argv) {
   /// Checked: the rate of \f$\phi^*\f$ (finite differences), the two forms of \f$a(k)\f$
   /// against each other, and \f$\alpha(k)\f$ from the recursion against the inertial
   /// derivative of \f$V(k)\f$ along the motion, whose \f$\dot\beta(0)\f$ is known.
+  ///
+  /// Now do exercise 3.6: a(k) in its coordinate-free form, in \f$O_k\f$ coordinates.
   checks.section("7. Accelerations and the Coriolis term a(k)");
   double dphi_res = 0, dphi_scale = 0, a_cf_res = 0, a_body_res = 0, a_scale = 0;
   std::printf("  %2s  %-8s %-10s %12s %12s\n", "k", "body", "hinge", "|a(k)|", "|dw x dv|");
@@ -651,6 +660,9 @@ int main(int argc, char** argv) {
   /// These 6n x 6n matrices are for understanding and testing: the recursions apply them in
   /// O(N) without forming them. A three-body chain with mixed hinges (universal at the base,
   /// helical, spherical at the tip) shows them; soa::OperatorsT builds them in the library.
+  ///
+  /// Now do exercises 3.3, the shift operator \f$\mathcal E_\phi\f$, and 3.4, \f$\phi\f$
+  /// block by block without inverting a matrix.
   checks.section("9. The first spatial operators");
   std::vector<soa::Body> three;
   {
@@ -773,6 +785,8 @@ int main(int argc, char** argv) {
   /// F as lesson 2 moves accelerations, \f$\phi^*(O_k,F)\,\alpha(k) + [0;\ \omega\times(\omega
   /// \times l(O_k, F))]\f$ (soa::jacobian_dot_times_beta()). Checked against the velocity and
   /// the acceleration of F along the motion, by finite differences of its pose.
+  ///
+  /// Now do exercise 3.5: the columns of J from the poses.
   checks.section("10. Jacobians: J = B* phi* H*");
   const soa::Pose tool(soa::exp_so3(Vec3d(0.1, 0.2, -0.3)), Vec3d(0.05, -0.02, 0.12));
   for (const int k : {1, 2}) {

@@ -181,6 +181,9 @@ int main(int argc, char** argv) {
   /// \f[ R(k) = \phi(k,k-1)\, R(k-1)\, \phi^*(k,k-1) + M(k), \qquad R(0) = 0 , \f]
   /// N parallel-axis moves in all (soa::composite_inertias). Each \f$R(k)\f$ is a rigid body
   /// inertia: its mass is the mass of bodies 1..k and it is symmetric positive definite.
+  ///
+  /// Now do exercise 5.1: the recursion, tip to base
+  /// (`exercises/05-mass-matrix/exercises.hpp`).
   checks.section("1. composite rigid body inertias");
   std::vector<SpatialInertia> R(static_cast<std::size_t>(n));
   soa::composite_inertias(chain, ws, R);
@@ -223,6 +226,9 @@ int main(int argc, char** argv) {
   ///     = R - \mathcal E_\phi R \mathcal E_\phi^* = M . \f]
   /// The dense \f$\phi M\phi^*\f$ costs \f$O(N^3)\f$; the right-hand side is known from the N
   /// blocks \f$R(k)\f$ and the \f$\phi(i,j)\f$.
+  ///
+  /// Now do exercise 5.4, the right-hand side from the Lyapunov recursion, then 5.5: derive
+  /// block (i, j) of \f$\phi M\phi^*\f$ from the decomposition.
   checks.section("2. the Lyapunov equation and the decomposition");
   const MatX R_op = soa::composite_inertia_operator(chain, ws);
   checks.check("R - E_phi R E_phi* = M (dense, 6n x 6n)",
@@ -248,6 +254,9 @@ int main(int argc, char** argv) {
   /// \f$\mathcal M(i,j) = H(i) F\f$. Every hinge type enters only through \f$H(k)\f$ (dense
   /// \f$H^*(k)\f$ for the columns, `H_times` for the rows), so the same loop serves the free,
   /// spherical, universal, helical, prismatic and revolute hinges of this chain.
+  ///
+  /// Now do exercises 5.2, the diagonal blocks, and 5.3, the CRB algorithm for a revolute
+  /// chain, then 5.6: predict the mass matrix of a chain of sliders from the masses alone.
   checks.section("3. the O(N^2) mass matrix");
   MatX M_crb;
   soa::mass_matrix_crb(chain, x, ws, R, M_crb);

@@ -104,4 +104,41 @@ Acceleration coriolis_acceleration(const Phi& phi, const Velocity& V_parent, con
   return Acceleration(w_p.cross(dw), w.cross(dv) + w_p.cross(v - v_p)) + Hdot_beta;
 }
 
+// 3.7: R = exp(theta_1 a~), l = theta_2 b + theta_3 c. From lesson 1, w~ = R* R_dot and
+// v = R* l_dot: R_dot = R a~ beta_1 gives w = beta_1 a (a is its own axis, R* a = a), and
+// l_dot = beta_2 b + beta_3 c gives v = R*(beta_2 b + beta_3 c). So
+//   H* = [a 0 0; 0 R*b R*c],
+// and the columns R*b, R*c turn: d/dt R* = (R a~ beta_1)* = -beta_1 a~ R*, so
+//   Hdot beta = [0; -beta_1 a x R*(beta_2 b + beta_3 c)] = [0; beta_1 v x a].
+PlanarJointMap planar_joint_map(const Vec3<double>& a, const Vec3<double>& b,
+                                const Vec3<double>& theta, const Vec3<double>& beta) {
+  const Mat3<double> Rt = exp_so3<double>(theta[0] * a).transpose();
+  const Vec3<double> c = a.cross(b);
+  PlanarJointMap out;
+  out.H_star = Matrix6X::Zero(6, 3);
+  out.H_star.col(0).head<3>() = a;
+  out.H_star.col(1).tail<3>() = Rt * b;
+  out.H_star.col(2).tail<3>() = Rt * c;
+  const Vec3<double> v = Rt * (beta[1] * b + beta[2] * c);
+  out.Hdot_beta = Acceleration(Vec3<double>::Zero(), beta[0] * v.cross(a));
+  return out;
+}
+
+// 3.8: the given code mixed coordinates: omega and v(O_k) were turned to inertial
+// coordinates, p was not. v(P) = R (v + omega x p), every vector in O_k coordinates first.
+Vec3<double> point_velocity(const Model& m, const State& x, int k, const Vec3<double>& p) {
+  Workspace ws(m);
+  update_phi(m, x.theta, ws);
+  update_poses(m, ws);
+  Velocity V;  // V(n+1) = 0
+  for (int i = m.n(); i >= k; --i) {
+    const Body& B = m.body(i);
+    V = ws.phi[i - 1].transpose_apply(V) +
+        B.hinge.H_star_times(x.theta.data() + B.q_offset, x.beta.data() + B.v_offset);
+  }
+  const Mat3<double> R = ws.pose[k - 1].R();
+  const Vec3<double> w = R * V.angular(), v = R * V.linear();
+  return v + w.cross(R * p);
+}
+
 }  // namespace soa::ex03

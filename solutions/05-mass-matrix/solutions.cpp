@@ -29,7 +29,14 @@ MatX<double> crb_mass_matrix_revolute(const Model& m, const VecX<double>& theta)
     const Body& B = m.body(k);
     phi.push_back(Phi(B.placement * Pose(exp_so3(theta[B.q_offset] * B.hinge.axis))));
   }
-  const std::vector<SpatialInertia> R = composite_inertias(m, phi);
+  // The composite inertias, tip to base, as in 5.1 (inlined: a solution calls no other
+  // exercise's function).
+  std::vector<SpatialInertia> R;
+  for (int k = 1; k <= n; ++k) {
+    SpatialInertia Rk = m.body(k).M;
+    if (k > 1) Rk = Rk + transform(phi[std::size_t(k - 2)], R.back());  // phi(k,k-1) R(k-1) ...
+    R.push_back(Rk);
+  }
   MatX<double> M(n, n);
   for (int j = 1; j <= n; ++j) {
     Vec6<double> h_star;
@@ -56,6 +63,36 @@ MatX<double> decomposition(const Operators& op) {
   }
   const MatX<double> phi_t = op.phi - MatX<double>::Identity(N, N);
   return R + phi_t * R + R * phi_t.transpose();
+}
+
+// 5.5: phi~ = phi - I holds the blocks phi(i,j), i > j, and nothing else, so block (i,j) of
+// R + phi~ R + R phi~* is R(i) for i = j, phi(i,j) R(j) for i > j (from phi~ R) and
+// R(i) phi*(j,i) for i < j (from R phi~*): the transpose of block (j,i).
+Mat6<double> phi_M_phi_star_block(const std::vector<Phi>& phi, const std::vector<SpatialInertia>& R,
+                                  int i, int j) {
+  if (i < j) return phi_M_phi_star_block(phi, R, j, i).transpose();
+  Mat6<double> block = R[std::size_t(j - 1)].matrix();
+  for (int k = j + 1; k <= i; ++k) block = phi[std::size_t(k - 2)].matrix() * block;  // phi(k,k-1)
+  return block;
+}
+
+// 5.6: nothing turns, so every body moves with the sum of the sliding velocities inboard of
+// it, sum_{i >= k} a_i beta_i, and the kinetic energy is 1/2 sum_k m_k |sum_{i >= k} a_i
+// beta_i|^2: M(i,j) = (m_1 + ... + m_min(i,j)) a_i . a_j. (With the operators: H*(j) = [0; a_j]
+// sees only the linear-linear block of R(j), the mass of bodies 1..j times I, and phi(i,j)
+// turns a pure force [0; F] into [l x R F; R F]: H(i) takes its linear part.)
+MatX<double> slider_mass_matrix(const std::vector<double>& mass,
+                                const std::vector<Vec3<double>>& axis) {
+  const int n = int(mass.size());
+  MatX<double> M(n, n);
+  double outboard = 0;  // m_1 + ... + m_j
+  for (int j = 1; j <= n; ++j) {
+    outboard += mass[std::size_t(j - 1)];
+    for (int i = j; i <= n; ++i)
+      M(i - 1, j - 1) = M(j - 1, i - 1) =
+          outboard * axis[std::size_t(i - 1)].dot(axis[std::size_t(j - 1)]);
+  }
+  return M;
 }
 
 }  // namespace soa::ex05
