@@ -393,9 +393,8 @@ MatX phi_variant(const std::vector<soa::Phi>& phi, PhiOp v) {
 // 3.4: phi block by block, against soa::Operators::phi = (I - E_phi)^-1, and (I - E_phi) phi = I.
 TEST(Exercise3_4_PhiOperator, MatchesLibrary) {
   Random<double> rnd;
-  // Declared in reverse: a check reports when it is destroyed, so phi's report comes first.
-  Check check_inverse("(I - E_phi) phi - I, the inverse's residual", 64 * kEps);
   Check check("phi = (I - E_phi)^-1, block by block", 64 * kEps);
+  Check check_inverse("(I - E_phi) phi - I, the inverse's residual", 64 * kEps);
   for (int i = 0; i < kCases; ++i) {
     const KinCase c = draw_kin_case(rnd, i);
     const MatX P = soa::ex03::phi_operator(c.ws.phi);
@@ -638,9 +637,8 @@ PlanarCase draw_planar_case(Random<double>& rnd, int i) {
 // 3.7: the joint map of a planar hinge and the rate of its entries, against the derivation.
 TEST(Exercise3_7_PlanarJointMap, MatchesDerivation) {
   Random<double> rnd;
-  // Declared in reverse: a check reports when it is destroyed, so H*'s report comes first.
-  Check check_Hdot("Hdot* beta, the rate of the joint map", 16 * kEps);
   Check check_H("H*(theta), the joint map of the planar hinge", 16 * kEps);
+  Check check_Hdot("Hdot* beta, the rate of the joint map", 16 * kEps);
   for (int i = 0; i < kCases; ++i) {
     const PlanarCase c = draw_planar_case(rnd, i);
     const soa::ex03::PlanarJointMap got = soa::ex03::planar_joint_map(c.a, c.b, c.theta, c.beta);

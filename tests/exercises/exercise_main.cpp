@@ -101,13 +101,13 @@ class Table : public testing::EmptyTestEventListener {
   }
 
   void print(const std::map<std::string, std::string>& meta) const {
-    std::printf("\n  %-34s %-28s %s\n", "exercise", "", "result");
+    std::printf("\n  %-32s %-34s %s\n", "exercise", "", "result");
     for (const auto& name : order_) {
       const Row& r = rows_.at(name);
       const char* status = !r.failed ? "pass" : r.not_done ? "not done" : "FAIL";
       const std::string l = label(name);
       const auto it = meta.find(l.substr(0, l.find(' ')));
-      std::printf("  %-34s %-28s %s\n", l.c_str(), it == meta.end() ? "" : it->second.c_str(),
+      std::printf("  %-32s %-34s %s\n", l.c_str(), it == meta.end() ? "" : it->second.c_str(),
                   status);
       if (r.failed && !r.not_done) {
         std::istringstream text(r.first_failure);

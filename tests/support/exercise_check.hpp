@@ -333,7 +333,9 @@ class Check {
   /// \p what names the checked quantity in words ("T, the hinge forces"); a case passes when
   /// \f$\|got - expected\| \le tol \cdot scale\f$.
   Check(std::string what, double tol)
-      : what_(std::move(what)), tol_(tol), worst_(what_ + " / scale") {}
+      : what_(std::move(what)), tol_(tol), worst_(what_ + " / scale"), id_(next_id()++) {
+    ++live();
+  }
   Check(const Check&) = delete;
   Check& operator=(const Check&) = delete;
 
@@ -392,10 +394,23 @@ class Check {
     return false;
   }
 
+  /// Reports in the order the checks were declared (the table's row shows the first): the
+  /// last check of a test to go reports them all.
   ~Check() {
-    if (std::uncaught_exceptions() > 0 || cases_ == 0) return;  // the test stopped early
-    if (failed_ == 0) return;
-    ADD_FAILURE() << message();
+    auto& p = pending();
+    // An exception (the stub's NotDone) stops the test: nothing to say about the numbers.
+    if (std::uncaught_exceptions() == 0 && cases_ > 0 && failed_ > 0)
+      p.emplace_back(id_, message());
+    if (--live() > 0) return;
+    std::sort(p.begin(), p.end());
+    for (const auto& [id, msg] : p) ADD_FAILURE() << msg;
+    p.clear();
+  }
+
+  /// Says what \p tag means for this check (its cases, and the likely cause of a failure
+  /// confined to them), in place of the general wording of tag_meanings().
+  void tag_meaning(Tag tag, const char* cases, const char* hint) {
+    overrides_.push_back(TagMeaning{tag, cases, hint});
   }
 
   int failed() const { return failed_; }
@@ -427,6 +442,25 @@ class Check {
 
  private:
   static constexpr int kExamine = 64;  // failing cases whose mistakes are computed
+  static int& next_id() {
+    static int n = 0;
+    return n;
+  }
+  static int& live() {
+    static int n = 0;
+    return n;
+  }
+  static std::vector<std::pair<int, std::string>>& pending() {
+    static std::vector<std::pair<int, std::string>> p;
+    return p;
+  }
+  std::vector<TagMeaning> meanings() const {
+    std::vector<TagMeaning> m = tag_meanings();
+    for (const TagMeaning& o : overrides_)
+      for (TagMeaning& t : m)
+        if (t.tag == o.tag) t = o;
+    return m;
+  }
   struct Count {
     int cases = 0, failed = 0;
   };
@@ -450,7 +484,7 @@ class Check {
   // A tag that all failing cases have while the cases without it all pass.
   std::vector<std::string> symptoms() const {
     std::vector<std::string> out;
-    for (const auto& t : tag_meanings()) {
+    for (const auto& t : meanings()) {
       const Count w = at(with_, t.tag), wo = at(without_, t.tag);
       if (wo.cases > 0 && wo.failed == 0 && w.failed > 0)
         out.push_back("every case unless " + std::string(t.cases) + " passes; " +
@@ -572,6 +606,8 @@ class Check {
   std::string what_;
   double tol_;
   Worst worst_;
+  int id_;
+  std::vector<TagMeaning> overrides_;
   int cases_ = 0, failed_ = 0, examined_ = 0;
   std::map<unsigned, Count> with_, without_;
   std::vector<Tally> tallies_;
