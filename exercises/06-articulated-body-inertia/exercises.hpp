@@ -2,15 +2,23 @@
 /// Lesson 6 exercises: the articulated body inertias of a serial chain by the Riccati
 /// recursion, and the projection \f$\bar\tau\f$.
 ///
-/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
-/// joins body k+1 to body k; \f$\theta\f$ is stacked tip first (body k's entries start at
-/// `m.body(k).q_offset`). Spatial vectors are angular part first; body k's quantities are at
-/// its hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$,
-/// so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.R()` and `phi.l()` are its rotation
-/// \f$R = {}^{k}R_{k-1}\f$ and offset \f$\ell = {}^{k}l(O_k, O_{k-1})\f$, and
-/// `phi.matrix()` is the 6x6 \f$\begin{pmatrix} I & \tilde\ell \\ 0 & I\end{pmatrix}
-/// \begin{pmatrix} R & 0 \\ 0 & R\end{pmatrix}\f$. \f$H^*(k)\f$ is the 6 x n_k matrix
-/// `m.body(k).hinge.H_star(theta + q_offset)`, \f$H(k)\f$ its transpose.
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body
+/// n is next to the base (the inertial frame is body n+1); hinge k joins body k+1 to body k;
+/// \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's entries start at
+/// `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial vectors are angular part first;
+/// body k's quantities are at its hinge frame \f$O_k\f$, in \f$O_k\f$ coordinates.
+/// `ws.phi[k-1]` is \f$\phi(k+1,k)\f$, so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.R()` and
+/// `phi.l()` are its rotation \f$R = {}^{k}R_{k-1}\f$ and offset \f$\ell = {}^{k}l(O_k,
+/// O_{k-1})\f$, and `phi.matrix()` is the 6x6 \f$\begin{pmatrix} I & \tilde\ell \\ 0 & I
+/// \end{pmatrix} \begin{pmatrix} R & 0 \\ 0 & R\end{pmatrix}\f$. \f$H^*(k)\f$ is the 6 x n_k
+/// matrix `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)`, \f$H(k)\f$ its
+/// transpose.
+///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out: derive, predict, or find the bug), the time it usually takes, and the
+/// exercises it builds on ("uses 6.1": the same idea, done there first; never a call to your
+/// code of that exercise). `make exercises HINT=6.7` prints the hints of an exercise one at a
+/// time (exercises/06-articulated-body-inertia/hints.md).
 ///
 /// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
 /// and run `make exercises`. Do not call the library function an exercise reproduces (named
@@ -35,16 +43,19 @@ struct RiccatiStep {
 };
 
 /// **Exercise 6.1: one Riccati step.**
+/// *Level 1 of 3, about 20 min.*
 /// Given \f$P^+(k-1)\f$ (\p P_plus_prev; zero for the tip, k = 1), \f$\phi(k,k-1)\f$
 /// (\p phi), \f$M(k)\f$ (\p M) and \f$H^*(k)\f$ (\p H_star, 6 x n_k), return (lesson 6,
 /// section 2)
 /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \quad D(k) = H(k)P(k)H^*(k), \f]
 /// \f[ G(k) = P(k)H^*(k)D^{-1}(k), \quad P^+(k) = P(k) - G(k)D(k)G^*(k). \f]
-/// Do not call soa::articulated_inertias.
+/// \f$\phi P^+ \phi^*\f$ may use `phi.matrix()` or soa::transform_symmetric (exercise 6.4
+/// does it by blocks). Do not call soa::articulated_inertias or soa::riccati_step.
 RiccatiStep riccati_step(const Mat6& P_plus_prev, const Phi& phi, const SpatialInertia& M,
                          const MatX<double>& H_star);
 
 /// **Exercise 6.2: the projection \f$\bar\tau\f$.**
+/// *Level 1 of 3, about 10 min.*
 /// For an articulated inertia \p P (symmetric, with \f$H P H^*\f$ positive definite) and a
 /// hinge map \p H_star (6 x n_k), return (lesson 6, section 3)
 /// \f[ \bar\tau = I - G H, \qquad G = P H^* (H P H^*)^{-1} . \f]
@@ -53,14 +64,17 @@ RiccatiStep riccati_step(const Mat6& P_plus_prev, const Phi& phi, const SpatialI
 Mat6 tau_bar(const Mat6& P, const MatX<double>& H_star);
 
 /// **Exercise 6.3: the articulated hinge inertias of a revolute chain.**
+/// *Level 2 of 3, about 30 min; uses 6.1.*
 /// Every hinge of \p m is revolute about the unit axis \f$a_k\f$ = `m.body(k).hinge.axis`
 /// (\f$H^*(k) = [a_k; 0]\f$, so \f$D(k)\f$ is a scalar). Run the Riccati recursion tip to
 /// base at \p theta and return \f$D(k)\f$ at entry k−1 (size n): the inertia hinge k feels
 /// about its axis with every hinge outboard of it free. \f$\phi(k,k-1)\f$ from
-/// soa::update_phi (allowed). Do not call soa::articulated_inertias.
+/// soa::update_phi and \f$\phi P \phi^*\f$ from soa::transform_symmetric are allowed. Do not
+/// call soa::articulated_inertias or soa::riccati_step.
 VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 6.4: \f$\phi P \phi^*\f$ without the 6x6 \f$\phi\f$.**
+/// *Level 2 of 3, about 30 min.*
 /// For a symmetric 6x6 \p P with blocks \f$\begin{pmatrix} A & B \\ B^* & C\end{pmatrix}\f$
 /// return \f$\phi\, P\, \phi^*\f$ from \f$R\f$ = `phi.R()` and \f$L = \tilde\ell\f$
 /// (\f$\ell\f$ = `phi.l()`): rotate the blocks, \f$A' = RAR^*\f$, \f$B' = RBR^*\f$,
@@ -71,6 +85,7 @@ VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 Mat6 transform_symmetric(const Phi& phi, const Mat6& P);
 
 /// **Exercise 6.5: the inter-body forces from the articulated sweeps.**
+/// *Level 1 of 3, about 15 min.*
 /// For the chain \p m (gravity as \p m says) at the state \p x with hinge forces \p T and no
 /// external forces, run soa::forward_dynamics (allowed) and return, at entry k−1 (size n),
 /// the force across hinge k from the inter-body forces identity (lesson 6, sections 2 and 8)
@@ -82,6 +97,7 @@ Mat6 transform_symmetric(const Phi& phi, const Mat6& P);
 std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x, const VecX<double>& T);
 
 /// **Exercise 6.6: the composite-body bias \f$y\f$.**
+/// *Level 2 of 3, about 40 min; uses 4.1.*
 /// For the chain \p m (gravity as \p m says) at the state \p x with hinge accelerations
 /// \p beta_dot and no external forces, return \f$y(k)\f$ at entry k−1 (size n) such that
 /// \f$f(k) = R(k)\,\alpha^+(k) + y(k)\f$ (lesson 6, section 8):
@@ -94,5 +110,47 @@ std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x, con
 /// soa::alpha_plus or soa::inverse_dynamics_composite.
 std::vector<Vec6<double>> composite_bias(const Model& m, const State& x,
                                          const VecX<double>& beta_dot);
+
+/// **Exercise 6.7: find the bug in a Riccati sweep.**
+/// *Level 3 of 3, about 30 min; uses 6.1.*
+/// The stub of `riccati_sweep` in exercises.cpp holds, under its `throw` line, code that is
+/// meant to run the Riccati recursion of lesson 6 (section 2) tip to base over the chain
+/// \p m (any hinge types) at \p theta and return \f$P(k)\f$ at entry k−1 (size n). It
+/// compiles and runs, but it has one bug. Find it and fix it, then delete the `throw`. No
+/// reference result is needed to find it: the properties of lesson 6, section 3, checked on
+/// the quantities the code computes, point to the line. Do not call soa::articulated_inertias
+/// or soa::riccati_step.
+std::vector<Mat6> riccati_sweep(const Model& m, const VecX<double>& theta);
+
+/// **Exercise 6.8: predict what \f$P^+(k)\f$ cannot feel.**
+/// *Level 3 of 3, about 30 min; uses 6.2.*
+/// \f$P^+(k)\f$ is the inertia that the bodies 1..k, hinge k free as well, present to body
+/// k+1: the force across hinge k is \f$f(k) = P^+(k)\,\alpha^+(k) + z^+(k)\f$ (lesson 6,
+/// sections 2 and 3). It is singular: some accelerations \f$\alpha^+(k)\f$ of body k+1 cost
+/// no force at all. Predict which, from the hinges alone, before computing any inertia: for
+/// the chain \p m at \p theta (every body with a positive definite \f$M(k)\f$) return, at
+/// entry k−1 (size n), a 6 x \f$r_k\f$ matrix whose \f$r_k\f$ columns are a basis of the null
+/// space of \f$P^+(k)\f$ (the 6-vectors \f$x\f$ with \f$P^+(k)\,x = 0\f$; \f$r_k\f$ is for
+/// you to predict too). The answer does not depend on the masses: do not compute any
+/// inertia of the chain (soa::articulated_inertias, soa::riccati_step, soa::composite_inertias,
+/// soa::forward_dynamics, `m.body(k).M`). The test checks your columns against the
+/// library's \f$P^+(k)\f$: their number is 6 − rank \f$P^+(k)\f$, \f$P^+(k)\f$ maps each to
+/// zero, and they are independent.
+std::vector<MatX<double>> P_plus_null_spaces(const Model& m, const VecX<double>& theta);
+
+/// **Exercise 6.9: the shaken base.**
+/// *Level 3 of 3, about 45 min; uses 6.1.*
+/// The chain \p m hangs at rest (\f$\beta = 0\f$) at \p theta: no gravity (ignore
+/// `m.gravity`, it is zero), no springs, no external forces, and no hinge forces
+/// (\f$T = 0\f$: every hinge is free). At one instant the base (body n+1, the inertial
+/// frame) is given the spatial acceleration \f$\alpha(n+1) = [0; a_0]\f$, \p a0 in inertial
+/// coordinates (it translates, it does not rotate). Return the hinge accelerations
+/// \f$\dot\beta\f$ of that instant (size nv, tip first), in O(n). Derive them from the
+/// articulated body relations of lesson 6, section 2: what are \f$z(k)\f$, \f$\epsilon(k)\f$
+/// and \f$\nu(k)\f$ here, and how does the acceleration reach body k from the base?
+/// \f$P(k)\f$, \f$D(k)\f$, \f$G(k)\f$ from soa::articulated_inertias (after soa::update_phi)
+/// are allowed. Do not call soa::forward_dynamics, soa::inverse_dynamics, soa::OperatorsT or
+/// any mass matrix function.
+VecX<double> shaken_base(const Model& m, const VecX<double>& theta, const Vec3<double>& a0);
 
 }  // namespace soa::ex06

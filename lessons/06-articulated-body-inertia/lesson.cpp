@@ -239,6 +239,10 @@ int main(int argc, char** argv) {
   /// from \f$R\f$ and \f$\tilde\ell\f$ without the 6x6 \f$\phi\f$ (soa::transform_symmetric).
   /// API: soa::articulated_inertias(); the \f$z\f$, \f$\epsilon\f$, \f$\nu\f$, \f$z^+\f$,
   /// \f$\alpha^+\f$ sweeps are the forward dynamics of lesson 8, soa::forward_dynamics().
+  ///
+  /// *Now do* exercises 6.1 (one Riccati step), 6.4 (\f$\phi P\phi^*\f$ by blocks, without the
+  /// 6x6 \f$\phi\f$) and 6.3 (the recursion down a revolute chain):
+  /// `exercises/06-articulated-body-inertia/exercises.hpp`, then `make exercises LESSON=6`.
   soa::Articulated art(m);
   soa::articulated_inertias(m, x, ws, art);
   double def_err = 0, def_scale = 1;
@@ -311,6 +315,10 @@ int main(int argc, char** argv) {
   checks.check("beta_dot = nu - G* alpha+ solves T = H f: ID(beta_dot) = T", (T_back - T).norm(),
                tol_f);
 
+  /// *Now do* exercises 6.5 (the inter-body forces identity from the forward dynamics' sweeps)
+  /// and 6.9 (the derivation above once more, at rest with every hinge free when the base is
+  /// shaken: derive \f$\dot\beta\f$).
+
   /// ## 3. Properties
   ///
   /// \f$P(k)\f$ and \f$P^+(k)\f$ are symmetric positive semidefinite, \f$D(k)\f$ is positive
@@ -352,6 +360,10 @@ int main(int argc, char** argv) {
                std::max((art.P[0] - m.body(1).M.matrix()).norm(),
                         (art.R[0].matrix() - m.body(1).M.matrix()).norm()),
                16 * kEps * scale);
+
+  /// *Now do* exercises 6.2 (\f$\bar\tau\f$ and its two properties), 6.8 (predict the null
+  /// space of \f$P^+(k)\f$ from the hinge alone) and 6.7 (a Riccati sweep with one bug, which
+  /// these properties find).
 
   /// ## 4. The operators \f$K\f$, \f$\mathcal E_\psi\f$ and \f$\psi\f$
   ///
@@ -659,6 +671,8 @@ int main(int argc, char** argv) {
   /// \f$y(k)\f$ gives the analogue of \f$P(\alpha - a) + z\f$:
   /// \f[ f(k) = R(k)\bigl(\alpha(k) - a(k)\bigr) + y^-(k), \qquad y^-(k) = \phi(k,k-1)\,y(k-1) +
   ///     R(k)\,a(k) + b(k). \f]
+  ///
+  /// *Now do* exercise 6.6 (the composite-body bias \f$y\f$, tip to base).
   ///
   /// **Hinges free: the articulated body.** From the Riccati equation \f$P = \mathcal E_\phi
   /// P^+\mathcal E_\phi^* + M\f$ with \f$P^+ = P - GDG^*\f$ and \f$K = \mathcal E_\phi G\f$,
