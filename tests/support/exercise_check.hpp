@@ -366,7 +366,9 @@ class Check {
     if (r >= worst_r_) {
       worst_r_ = r;
       worst_i_ = i;
-      worst_rel_ = (g - e).norm() / std::max(e.norm(), 1e-300);
+      worst_abs_ = (g - e).norm();
+      worst_norm_ = e.norm();
+      worst_nan_ = !g.allFinite();
     }
     // The case shown in full is the simplest that fails (the smallest result), the worst of
     // those: easier to follow by hand than the worst of all.
@@ -407,6 +409,10 @@ class Check {
     p.clear();
   }
 
+  /// What one call of add() is, in the message's counts: "case" (a random case), or "body",
+  /// "step" when a test gives each body or step of a case separately.
+  void count_as(std::string unit) { unit_ = std::move(unit); }
+
   /// Says what \p tag means for this check (its cases, and the likely cause of a failure
   /// confined to them), in place of the general wording of tag_meanings().
   void tag_meaning(Tag tag, const char* cases, const char* hint) {
@@ -420,8 +426,8 @@ class Check {
   std::string message() const {
     if (!shape_.empty()) return shape_;
     std::ostringstream s;
-    s << what_ << ": wrong in " << failed_ << " of " << cases_ << " cases (worst relative error "
-      << short_num(worst_rel_) << ", case " << worst_i_ << ")\n";
+    s << what_ << ": wrong in " << failed_ << " of " << cases_ << " " << unit_ << "s (worst "
+      << error_words() << ", " << unit_ << " " << worst_i_ << ")\n";
     bool named = false;
     for (const Tally& t : tallies_)
       if (t.informative > 0 && t.matched == t.informative) {
@@ -483,23 +489,26 @@ class Check {
 
   // A tag that all failing cases have while the cases without it all pass.
   std::vector<std::string> symptoms() const {
-    std::vector<std::string> out;
+    // "Fails only where X" says more than "passes wherever Y": those first.
+    std::vector<std::string> only, never;
     for (const auto& t : meanings()) {
       const Count w = at(with_, t.tag), wo = at(without_, t.tag);
       if (wo.cases > 0 && wo.failed == 0 && w.failed > 0)
-        out.push_back("every case unless " + std::string(t.cases) + " passes; " +
-                      std::to_string(w.failed) + " of " + std::to_string(w.cases) +
-                      " where it does fail: " + t.hint);
+        only.push_back("every " + unit_ + " unless " + std::string(t.cases) + " passes; " +
+                       std::to_string(w.failed) + " of " + std::to_string(w.cases) +
+                       " where it does fail: " + t.hint);
       else if (w.cases > 0 && w.failed == 0 && wo.failed > 0)
-        out.push_back("every case where " + std::string(t.cases) + " passes; " +
-                      std::to_string(wo.failed) + " of " + std::to_string(wo.cases) +
-                      " others fail");
+        never.push_back("every " + unit_ + " where " + std::string(t.cases) + " passes; " +
+                        std::to_string(wo.failed) + " of " + std::to_string(wo.cases) +
+                        " others fail");
     }
+    std::vector<std::string> out = only;
+    out.insert(out.end(), never.begin(), never.end());
     if (out.size() > 2) out.resize(2);
     if (out.empty() && failed_ == cases_)
-      out.push_back(
-          "every case fails, whatever it has: the formula itself (or the layout "
-          "of the result: order, tip first) is off");
+      out.push_back("every " + unit_ +
+                    " fails, whatever it has: the formula itself (or the layout of the result: "
+                    "order, tip first) is off");
     return out;
   }
   static Count at(const std::map<unsigned, Count>& v, unsigned tag) {
@@ -591,6 +600,14 @@ class Check {
     return head + " (paste into a program): " + path + "\n";
   }
 
+  // The worst error in plain words: relative to the expected value, or absolute when that is
+  // zero, or "not a number".
+  std::string error_words() const {
+    if (worst_nan_) return "result not finite (NaN or inf)";
+    if (worst_norm_ > 0) return "relative error " + short_num(worst_abs_ / worst_norm_);
+    return "error " + short_num(worst_abs_) + " where the answer is zero";
+  }
+
   static std::string short_num(double x) {
     char b[32];
     std::snprintf(b, sizeof b, "%.2g", x);
@@ -612,7 +629,9 @@ class Check {
   std::map<unsigned, Count> with_, without_;
   std::vector<Tally> tallies_;
   std::string shape_;
-  double worst_r_ = -1, worst_rel_ = 0;
+  double worst_r_ = -1, worst_abs_ = 0, worst_norm_ = 0;
+  bool worst_nan_ = false;
+  std::string unit_ = "case";
   int worst_i_ = -1;
   double shown_r_ = 0;
   int shown_i_ = -1;
