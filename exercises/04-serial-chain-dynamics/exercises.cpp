@@ -41,4 +41,15 @@ MatX<double> coriolis_matrix_operators(const EnergyStructure& es) {
   throw exercise::NotDone("4.7 coriolis_matrix_operators");
 }
 
+Acceleration helical_coriolis(const Vec3<double>& omega_parent, const Vec3<double>& l,
+                              const Vec3<double>& axis, double pitch, double beta) {
+  (void)omega_parent, (void)l, (void)axis, (void)pitch, (void)beta;
+  throw exercise::NotDone("4.8 helical_coriolis");
+}
+
+VecX<double> gravity_torque_signs(const Model& m, const VecX<double>& theta) {
+  (void)m, (void)theta;
+  throw exercise::NotDone("4.9 gravity_torque_signs");
+}
+
 }  // namespace soa::ex04

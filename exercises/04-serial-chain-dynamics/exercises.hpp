@@ -137,4 +137,41 @@ VecX<double> gravity_torques(const Model& m, const VecX<double>& theta);
 /// call `es.coriolis_matrix()`, `es.B_dot()`, `es.phi_dot()` or `es.mass_matrix_rate()`.
 MatX<double> coriolis_matrix_operators(const EnergyStructure& es);
 
+/// **Exercise 4.8: the Coriolis term of a helical hinge.**
+/// *Level 3 of 3, about 45 min; uses 4.2.*
+/// Hinge k is a screw: it turns about the unit axis \f$a\f$ (\p axis) and slides along it by
+/// the pitch \f$h\f$ (\p pitch) per radian, so \f$H^*(k) = [a;\ h\,a]\f$ and
+/// \f$\Delta_V(k) = H^*(k)\beta(k) = [\beta a;\ h\beta a]\f$ with \f$\beta = \beta(k)\f$
+/// (\p beta). As in exercise 4.2, \p omega_parent is \f$\omega' = R^*\omega(k+1)\f$, the
+/// angular velocity of body k+1, and \p l is \f$l = R^*\ell\f$, the vector from
+/// \f$O_{k+1}\f$ to \f$O_k\f$, both in \f$O_k\f$ coordinates. Return the Coriolis term
+/// \f$a(k)\f$ of the acceleration recursion
+/// \f[ \alpha(k) = \phi^*(k+1,k)\,\alpha(k+1) + H^*(k)\,\dot\beta(k) + a(k) \f]
+/// in \f$O_k\f$ coordinates, angular part first. Exercise 4.2 gives it for a revolute hinge
+/// (\f$h = 0\f$); derive the helical one by differentiating \f$V(k) = \phi^*(k+1,k)\,V(k+1) +
+/// H^*(k)\beta(k)\f$ in the inertial frame (lesson 3, section 7; lesson 4, section 1). It does
+/// not depend on the linear velocity of body k+1 (your derivation should show why), so these
+/// inputs are all it needs. Do not call soa::coriolis_term or soa::update_velocities.
+Acceleration helical_coriolis(const Vec3<double>& omega_parent, const Vec3<double>& l,
+                              const Vec3<double>& axis, double pitch, double beta);
+
+/// **Exercise 4.9: predict which way each hinge holds the chain up.**
+/// *Level 3 of 3, about 40 min; uses 4.6.*
+/// Every hinge of \p m is revolute about its unit axis \f$a_k\f$ = `m.body(k).hinge.axis`
+/// (in \f$O_k\f$ coordinates); gravity `m.gravity` is not zero; there are no springs. The
+/// chain is held still at the configuration \p theta by the hinge forces \f$\mathcal
+/// G(\theta) = \mathcal C(\theta, 0)\f$ (lesson 4, section 5). Which way does each hinge
+/// push, and which hinges feel no gravity torque at all? Predict it from the statics of the
+/// bodies each hinge carries, not from the recursions: return, tip first (size nv), for
+/// each hinge k \f$+1\f$ when \f$\mathcal G(k) > 0\f$, \f$-1\f$ when \f$\mathcal G(k) < 0\f$
+/// and \f$0\f$ when gravity gives hinge k no torque, taken as \f$|\mathcal G(k)| \le 10^{-9}
+/// W_k\f$ with \f$W_k = |g| \sum_i m_i\,(1 + |l(O_k, C_i)|)\f$ over the bodies i that hinge k
+/// carries (so that rounding does not decide). soa::update_phi and soa::update_poses give
+/// \f${}^I T_{O_k}\f$ = `ws.pose[k-1]` (`.R()`, `.l()`, `.apply(p)`); the centre of mass of
+/// body k is at `m.body(k).M.p()` in \f$O_k\f$ coordinates. The test checks your signs
+/// against soa::inverse_dynamics (a pendulum hanging straight down, a hinge with a vertical
+/// axis: think them through first). Do not call soa::inverse_dynamics, soa::jacobian or
+/// soa::OperatorsT.
+VecX<double> gravity_torque_signs(const Model& m, const VecX<double>& theta);
+
 }  // namespace soa::ex04

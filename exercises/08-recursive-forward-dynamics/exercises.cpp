@@ -34,4 +34,51 @@ State rk4_step(const Model& m, const State& x, const VecX<double>& T, double h) 
   throw exercise::NotDone("8.5 rk4_step");
 }
 
+VecX<double> forward_dynamics_fixed(const Model& m, const State& x, const VecX<double>& T,
+                                    const ExternalForces<double>& f_ext) {
+  throw exercise::NotDone("8.6 forward_dynamics_fixed");
+  // The code to fix. It has one bug; delete the throw line above, then find it.
+  const int n = m.n();
+  Workspace ws(m);
+  update_phi(m, x.theta, ws);
+  update_velocities(m, x, ws);  // V(k), a(k)
+  Articulated art(m);
+  articulated_inertias(m, x, ws, art);  // P(k), D(k), G(k), P+(k)
+  std::vector<Force> z_plus(static_cast<std::size_t>(n));
+  std::vector<VecX<double>> nu(static_cast<std::size_t>(n));
+  // Tip to base: z, epsilon, nu, z+.
+  for (int k = 1; k <= n; ++k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Body& B = m.body(k);
+    const double* th = x.theta.data() + B.q_offset;
+    Force z = Force(art.P[j] * ws.a[j].vector()) + gyroscopic_force(B.M, ws.V[j]);
+    if (!f_ext.empty()) z -= f_ext[j];
+    if (k > 1) z += ws.phi[j - 1].apply(z_plus[j - 1]);  // phi(k,k-1) z+(k-1)
+    VecX<double> eps = T.segment(B.v_offset, B.hinge.nv());
+    add_spring_force(B, th, x.beta.data() + B.v_offset, eps.data());  // T + tau_s
+    eps -= B.hinge.H_star(th).transpose() * z.vector();
+    nu[j] = art.D_inv[j] * eps;
+    z_plus[j] = z + Force(art.G[j] * eps);
+  }
+  // Base to tip: alpha+, beta_dot, alpha, from alpha(n+1) = [0; -g].
+  VecX<double> beta_dot(m.nv());
+  Acceleration alpha = gravity_base_acceleration(m);  // alpha(k+1)
+  for (int k = n; k >= 1; --k) {
+    const std::size_t j = std::size_t(k - 1);
+    const Body& B = m.body(k);
+    const Acceleration alpha_plus = ws.phi[j].transpose_apply(alpha);
+    const VecX<double> bd = nu[j] - art.G[j].transpose() * alpha_plus.vector();
+    beta_dot.segment(B.v_offset, B.hinge.nv()) = bd;
+    const JointMap<double> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
+    alpha = alpha_plus + Acceleration(Hs * nu[j]) + ws.a[j];
+  }
+  return beta_dot;
+}
+
+Hybrid hybrid_dynamics(const Model& m, const State& x, const std::vector<bool>& prescribed,
+                       const VecX<double>& T, const VecX<double>& beta_dot) {
+  (void)m, (void)x, (void)prescribed, (void)T, (void)beta_dot;
+  throw exercise::NotDone("8.7 hybrid_dynamics");
+}
+
 }  // namespace soa::ex08

@@ -14,6 +14,11 @@
 /// terms `ws.a`; soa::gyroscopic_force gives the gyroscopic term of \f$b(k)\f$;
 /// soa::articulated_inertias gives \f$P, D, G, P^+\f$ (lesson 6).
 ///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out: derive, or find the bug), the time it usually takes, and the exercises it
+/// builds on ("uses 8.3": the same idea, done there first; never a call to your code of that
+/// exercise).
+///
 /// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
 /// and run `make exercises`. Do not call the library function an exercise reproduces (named
 /// in its statement); the other library functions are yours to use.
@@ -37,6 +42,7 @@ struct TipToBase {
 };
 
 /// **Exercise 8.1: the tip-to-base sweep of a revolute chain.**
+/// *Level 2 of 3, about 40 min.*
 /// Every hinge of \p m is revolute (\f$H^*(k) = [a_k; 0]\f$, \f$a_k\f$ =
 /// `m.body(k).hinge.axis`); no gravity, no external forces, no springs. At the state \p x
 /// with hinge torques \p T, return for k = 1 (tip) ... n (lesson 8, section 2)
@@ -48,6 +54,7 @@ struct TipToBase {
 TipToBase tip_to_base(const Model& m, const State& x, const VecX<double>& T);
 
 /// **Exercise 8.2: the base-to-tip sweep.**
+/// *Level 1 of 3, about 25 min.*
 /// Hinges of any type. Given `ws.phi` (\f$\phi(k+1,k)\f$) and `ws.a` (\f$a(k)\f$) filled,
 /// the gains \f$G(k)\f$ = `art.G[k-1]` (6 x n_k), \f$\nu(k)\f$ = `nu[k-1]` (n_k entries)
 /// and the base acceleration \f$\alpha(n+1)\f$ = \p alpha_base (\f$[0; -g]\f$ for gravity,
@@ -61,6 +68,7 @@ VecX<double> base_to_tip(const Model& m, const State& x, const Workspace& ws,
                          const Acceleration& alpha_base, std::vector<Acceleration>& alpha);
 
 /// **Exercise 8.3: forward dynamics of a chain of one-degree-of-freedom hinges.**
+/// *Level 2 of 3, about 60 min; uses 8.1 and 8.2.*
 /// Every hinge of \p m is revolute, prismatic or helical: \f$H^*(k)\f$ is one 6-vector
 /// \f$s_k\f$ and \f$D(k) = s_k^* P(k) s_k\f$ a scalar. With gravity (`m.gravity`, as the base
 /// acceleration \f$[0; -g]\f$) and the external forces \p f_ext (empty: none; else entry
@@ -74,6 +82,7 @@ VecX<double> forward_dynamics_1dof(const Model& m, const State& x, const VecX<do
                                    const ExternalForces<double>& f_ext);
 
 /// **Exercise 8.4: the inter-body forces.**
+/// *Level 1 of 3, about 15 min.*
 /// \p fd holds the results of soa::forward_dynamics at some state \p x: \f$P^+(k)\f$ =
 /// `fd.art.P_plus[k-1]`, \f$\alpha^+(k)\f$ = `fd.alpha_plus[k-1]`, \f$z^+(k)\f$ =
 /// `fd.z_plus[k-1]`. Return the spatial force \f$f(k)\f$ that body k+1 exerts on body k
@@ -86,6 +95,7 @@ std::vector<Force> inter_body_forces(const Model& m, const State& x, const Forwa
                                      VecX<double>& T_hinge);
 
 /// **Exercise 8.5: a simulation step.**
+/// *Level 1 of 3, about 25 min.*
 /// Every hinge of \p m has \f$\dot\theta = \beta\f$ (revolute, prismatic, helical,
 /// universal). Return the state after one step \p h of the classical Runge–Kutta method
 /// (RK4) for \f$\dot\theta = \beta\f$, \f$\dot\beta = \mathrm{FD}(\theta, \beta, T)\f$ with
@@ -95,5 +105,50 @@ std::vector<Force> inter_body_forces(const Model& m, const State& x, const Forwa
 /// \f$y = (\theta, \beta)\f$, \f$F(y) = (\beta, \mathrm{FD}(\theta, \beta, T))\f$.
 /// soa::forward_dynamics is yours to use here.
 State rk4_step(const Model& m, const State& x, const VecX<double>& T, double h);
+
+/// **Exercise 8.6: find the bug in an articulated body forward dynamics.**
+/// *Level 3 of 3, about 30 min; uses 8.1 and 8.2.*
+/// The stub of this function in exercises.cpp holds, below its `throw` line, a complete
+/// forward dynamics by the three sweeps of lesson 8, section 2, for hinges of any type, with
+/// gravity (`m.gravity`), the external forces \p f_ext (empty: none; else entry k−1 acts on
+/// body k at \f$O_k\f$) and the hinges' springs and dampers, with \f$P, D, G\f$ from
+/// soa::articulated_inertias. It compiles and runs, and it has **one bug**: on many chains
+/// its \f$\dot\beta\f$ is wrong. Delete the `throw` line, run `make exercises EX=8.6` and read
+/// the symptom (which cases fail, which pass), find the bug with the formulas of the lesson
+/// and fix it (one line). Return \f$\dot\beta = \mathcal M^{-1}(T + \tau_s - \mathcal C)\f$,
+/// size nv, tip first. Do not call soa::forward_dynamics.
+VecX<double> forward_dynamics_fixed(const Model& m, const State& x, const VecX<double>& T,
+                                    const ExternalForces<double>& f_ext);
+
+/// The result of exercise 8.7: both vectors complete, size nv, tip first.
+struct Hybrid {
+  VecX<double> beta_dot;  ///< \f$\dot\beta\f$: given (prescribed hinges) or computed
+  VecX<double> T;         ///< \f$T\f$: computed (prescribed hinges) or given
+};
+
+/// **Exercise 8.7: hybrid dynamics, some hinges driven by their accelerations.**
+/// *Level 3 of 3, about 60 min; uses 8.3.*
+/// Servos hold some hinges of the chain \p m on a prescribed motion. For body k with
+/// `prescribed[k-1]` true, the accelerations \f$\dot\beta(k)\f$ of hinge k are given (the
+/// entries of \p beta_dot from `m.body(k).v_offset` on) and its hinge force \f$T(k)\f$ is
+/// unknown; for every other hinge \f$T(k)\f$ is given (the entries of \p T) and
+/// \f$\dot\beta(k)\f$ is unknown. Entries that are not given are to be ignored, whatever
+/// they hold. The chain has hinges of any type, gravity `m.gravity` (possibly zero), no
+/// springs and no external forces, and is at the state \p x. Return the complete
+/// \f$\dot\beta\f$ and \f$T\f$ with \f$T = \mathcal M\dot\beta + \mathcal C\f$ for the
+/// whole chain, the given entries copied through.
+///
+/// Derive it from lesson 8, section 2 (with lesson 6's derivation of the Riccati sweep): by
+/// induction from the tip, the force across hinge k is \f$f(k) = P(k)\,(\alpha(k) - a(k)) +
+/// z(k) = P^+(k)\,\alpha^+(k) + z^+(k)\f$. Work out what \f$P^+(k)\f$ and \f$z^+(k)\f$ are
+/// across a prescribed hinge, where \f$\dot\beta(k)\f$ is known, and how the base-to-tip
+/// sweep gets its \f$T(k)\f$; free hinges keep the sweeps of section 2. After the velocities,
+/// one sweep tip to base and one base to tip, O(N): no mass matrix. soa::update_phi,
+/// soa::update_velocities (\f$V\f$, \f$a\f$), soa::gyroscopic_force,
+/// soa::gravity_base_acceleration, `phi.matrix()` and `hinge.H_star(...)` are yours to use; do
+/// not call soa::forward_dynamics, soa::articulated_inertias, soa::riccati_step,
+/// soa::inverse_dynamics, soa::mass_matrix_crb or soa::OperatorsT.
+Hybrid hybrid_dynamics(const Model& m, const State& x, const std::vector<bool>& prescribed,
+                       const VecX<double>& T, const VecX<double>& beta_dot);
 
 }  // namespace soa::ex08

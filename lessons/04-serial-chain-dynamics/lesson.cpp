@@ -314,6 +314,10 @@ int main(int argc, char** argv) {
   /// \f$V(n+1) = 0\f$ and, section 5, \f$\alpha(n+1) = [0; -g]\f$); tip to base the
   /// forces above. We write the tip-to-base sweep here and compare it with the library's
   /// soa::inverse_dynamics.
+  ///
+  /// Now do exercise 4.1 (the gather sweep) and 4.2 (both sweeps of a revolute chain, with
+  /// gravity as in section 5); exercise 4.8 derives the Coriolis term \f$a(k)\f$ of a helical
+  /// hinge.
   checks.section("1. One body of the chain: the Newton-Euler recursions");
   const Model chain = small_chain();
   const int n = chain.n(), nv = chain.nv();
@@ -409,6 +413,9 @@ int main(int argc, char** argv) {
   /// forces (in \f$b\f$, section 6). Two consequences give the O(N) route to both: the bias is
   /// inverse dynamics at \f$\dot\beta = 0\f$, and column j of \f$\mathcal M\f$ is
   /// \f$T(\dot\beta = e_j) - T(\dot\beta = 0)\f$.
+  ///
+  /// Now do exercises 4.3 (the mass matrix from the operators), 4.4 (the mass matrix column by
+  /// column from inverse dynamics) and 4.5 (the bias from the operators).
   checks.section("3. T = M beta_dot + C: the Newton-Euler factorization");
   const MatX M_ne = op.H * op.phi * op.M * op.phi.transpose() * op.H.transpose();
   const VecX C_ne = op.H * op.phi * (op.M * op.phi.transpose() * op.a + op.b);
@@ -465,6 +472,8 @@ int main(int argc, char** argv) {
   /// hinge forces that hold the chain still at \f$\theta\f$ are its gradient:
   /// \f$\mathcal G(\theta) = \mathcal C(\theta, 0) = \partial\,\mathcal U_g/\partial\theta\f$
   /// (for hinges with \f$\dot\theta = \beta\f$; checked by finite differences).
+  ///
+  /// Now do exercise 4.9: predict which way each hinge holds a chain up against gravity.
   checks.section("5. Gravity as a base acceleration");
   Model chain_no_g = chain;
   chain_no_g.gravity = Vec3::Zero();
@@ -510,6 +519,8 @@ int main(int argc, char** argv) {
   /// \f[ \Delta T = -J^*(F)\, f_F , \f]
   /// the hinge forces that a static force at a tool point costs, the dual of
   /// \f$V(F) = J\beta\f$.
+  ///
+  /// Now do exercise 4.6: the gravity torques as \f$-\sum_k J^*(C_k)\,[0; m_k g]\f$.
   checks.section("6. External forces enter b");
   const Pose tool = at(Vec3(0.1, -0.2, 0.3), Vec3(0.25, 0.05, -0.04));  // ^{O_1}T_F on the tip
   const Force f_tool(Vec3(0.3, -0.5, 0.2), Vec3(4.0, -2.0, 6.0));       // at F, F coordinates
@@ -867,6 +878,8 @@ int main(int argc, char** argv) {
   /// soa::EnergyStructureT holds the dense operators (teaching and tests only). Checked on
   /// the chain of section 1 and on a floating chain (free, spherical and revolute hinges),
   /// whose quaternions are moved by the library's soa::retract() for the differences.
+  ///
+  /// Now do exercise 4.7: the Coriolis matrix from the operators.
   checks.section("11. The energy structure: Coriolis matrix and mass matrix rate");
   {
     const auto energy_checks = [&](const Model& mc, const State& xs, const char* name) {

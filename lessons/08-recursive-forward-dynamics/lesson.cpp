@@ -432,6 +432,10 @@ int main(int argc, char** argv) {
   /// matrices; the library's soa::forward_dynamics fuses the Riccati recursion into sweep 2,
   /// works on the 3-vector parts and never forms a 6x6 \f$\phi\f$. Both against the
   /// reference of section 1:
+  ///
+  /// Now do exercises 8.1 (sweep 2 of a revolute chain), 8.2 (sweep 3) and 8.3 (the whole
+  /// algorithm, the Riccati recursion included); then 8.6, a forward dynamics with one bug to
+  /// find, and 8.7, which derives the sweeps when some hinges have prescribed accelerations.
   checks.section("2. The Riccati sweep");
   const Sweeps sw = articulated_body_sweeps(m, x, T, f_ext);
   soa::ForwardDynamics fd(m);
@@ -464,6 +468,8 @@ int main(int argc, char** argv) {
   /// 4) at the computed \f$\dot\beta\f$ computes the same \f$f(k)\f$ from
   /// \f$f(k) = \phi(k,k-1)f(k-1) + M(k)\alpha(k) + b(k)\f$, and its hinge forces
   /// \f$T(k) = H(k)f(k) - \tau_s(k)\f$ must give back the \f$T\f$ we started from.
+  ///
+  /// Now do exercise 8.4: the inter-body forces from the sweeps' results.
   checks.section("3. The inter-body forces");
   Workspace ws_ne(m);
   const VecX T_back = inverse(m, x, bd, f_ext, &ws_ne);
@@ -751,6 +757,8 @@ int main(int argc, char** argv) {
   /// \image html l8_double_pendulum.png "The double pendulum released at rest: its two hinge angles over 2 s (RK4, h = 1 ms)" width=600px
   ///
   /// \image html l8_energy.png "Relative energy error of RK4 on the double pendulum for four step sizes: each halving of h divides it by about 16" width=600px
+  ///
+  /// Now do exercise 8.5: one RK4 step.
   checks.section("7. A short simulation");
   soa::Scene pend;
   bool have_pendulum = true;

@@ -1,6 +1,8 @@
 // Lesson 4 exercises, solved from the formulas of the statements (exercises.hpp).
 #include "exercises.hpp"
 
+#include <cmath>
+
 namespace soa::ex04 {
 
 // 4.1: tip to base, f(k) = phi(k,k-1) f(k-1) + M(k) alpha(k) + b(k), T(k) = H(k) f(k).
@@ -123,6 +125,46 @@ MatX<double> coriolis_matrix_operators(const EnergyStructure& es) {
   const MatX<double> B_dot =
       phi_dot.transpose() * es.op.H.transpose() + phi.transpose() * es.H_dot.transpose();
   return B.transpose() * (es.op.M * B_dot + es.h_breve * B);
+}
+
+// 4.8: differentiate V(k) = phi*(k+1,k) V(k+1) + Delta_V in the inertial frame (lesson 3,
+// section 7): a(k) = [w' x Delta_w; w(k) x Delta_v + w' x (v(k) - v(k+1))] with
+// v(k) - v(k+1) = w' x l + Delta_v in O_k coordinates (the velocity of O_{k+1} drops out).
+// For the screw, Delta_w = beta a and Delta_v = h beta a, w(k) = w' + beta a and
+// (beta a) x (h beta a) = 0, so the sliding enters twice:
+//   a(k) = [w' x beta a;  w' x (w' x l) + 2 h beta w' x a].
+Acceleration helical_coriolis(const Vec3<double>& omega_parent, const Vec3<double>& l,
+                              const Vec3<double>& axis, double pitch, double beta) {
+  const Vec3<double>& w = omega_parent;
+  const Vec3<double> angular = w.cross(beta * axis);
+  const Vec3<double> linear = w.cross(w.cross(l)) + 2.0 * beta * pitch * w.cross(axis);
+  return Acceleration(angular, linear);
+}
+
+// 4.9: hinge k carries bodies 1 ... k (itself and everything outboard). Held still, its moment
+// cancels gravity's about any point of the axis, O_k: G(k) = -a_k* sum_i l(O_k, C_i) x m_i g,
+// in inertial coordinates. A vertical axis (a_k parallel to g) gives 0, whatever the pose.
+VecX<double> gravity_torque_signs(const Model& m, const VecX<double>& theta) {
+  Workspace ws(m);
+  update_phi(m, theta, ws);
+  update_poses(m, ws);
+  VecX<double> sign(m.nv());
+  for (int k = 1; k <= m.n(); ++k) {
+    const Pose& O = ws.pose[std::size_t(k - 1)];
+    const Vec3<double> a = O.R() * m.body(k).hinge.axis;  // inertial coordinates
+    Vec3<double> moment = Vec3<double>::Zero();
+    double W = 0;
+    for (int i = 1; i <= k; ++i) {
+      const SpatialInertia& Mi = m.body(i).M;
+      const Vec3<double> r = ws.pose[std::size_t(i - 1)].apply(Mi.p()) - O.l();  // l(O_k, C_i)
+      moment += r.cross(Mi.mass() * m.gravity);
+      W += Mi.mass() * (1 + r.norm());
+    }
+    W *= m.gravity.norm();
+    const double G = -a.dot(moment);  // the hinge's moment about its axis
+    sign[m.body(k).v_offset] = std::abs(G) <= 1e-9 * W ? 0.0 : G > 0 ? 1.0 : -1.0;
+  }
+  return sign;
 }
 
 }  // namespace soa::ex04

@@ -479,3 +479,193 @@ TEST(Exercise4_7_CoriolisMatrixOperators, MatchesLibraryAndInverseDynamics) {
     }
   }
 }
+
+// The Coriolis term of a helical hinge (exercise 4.8) with a classic mistake in it (or none),
+// from w' = R* omega(k+1), l = R* ell, the axis a, the pitch h and beta.
+enum class Screw { Right, Revolute, SlideOnce, SlideSign, BodyOmega, AngularOrder };
+soa::Acceleration helical_variant(const Vec3& w, const Vec3& l, const Vec3& a, double h, double b,
+                                  Screw e) {
+  const Vec3 wk = w + b * a;  // omega(k)
+  const Vec3& u = e == Screw::BodyOmega ? wk : w;
+  const Vec3 ang = e == Screw::AngularOrder ? Vec3((b * a).cross(w)) : Vec3(u.cross(b * a));
+  const double slide = e == Screw::Revolute    ? 0.0
+                       : e == Screw::SlideOnce ? 1.0
+                       : e == Screw::SlideSign ? -2.0
+                                               : 2.0;
+  return soa::Acceleration(ang, u.cross(u.cross(l)) + slide * b * h * u.cross(a));
+}
+
+// 4.8: a(k) of a helical hinge against soa::coriolis_term, on random single hinges: the
+// inboard body's velocity V(k+1) = [omega; v] (v random: the result must not depend on it),
+// phi(k+1,k) rotated or not, offset or not, the hinge turning or not, a screw or a plain
+// revolute (h = 0), each varying independently.
+TEST(Exercise4_8_HelicalCoriolis, MatchesCoriolisTerm) {
+  Random<double> rnd;
+  Check check("a(k), the Coriolis term of the screw", 64 * kEps);
+  for (int i = 0; i < kCases; ++i) {
+    const Mat3 R = i % 2 == 1 ? rnd.rotation() : Mat3::Identity();
+    const Vec3 ell = i % 3 != 0 ? rnd.vec3() : Vec3::Zero();
+    const Vec3 wp = rnd.vec3(), vp = rnd.vec3();  // V(k+1), O_{k+1} coordinates
+    const Vec3 axis = rnd.unit3();
+    const double pitch = i % 4 == 1 ? 0.0 : rnd.uniform(-0.5, 0.5);
+    const double beta = i % 5 == 0 ? 0.0 : rnd.normal();
+    const soa::Phi phi(R, ell);
+    const soa::Velocity Vp(wp, vp), dV(beta * axis, beta * pitch * axis);
+    const soa::Velocity V = phi.transpose_apply(Vp) + dV;
+    const soa::Acceleration a_ref = soa::coriolis_term(phi, Vp, V, dV, soa::Acceleration());
+    const Vec3 w = R.transpose() * wp, l = R.transpose() * ell;
+    const soa::Acceleration a = soa::ex04::helical_coriolis(w, l, axis, pitch, beta);
+    unsigned tags = 0;
+    if (i % 2 == 1) tags |= soa::test::kRotated;
+    if (i % 3 != 0) tags |= soa::test::kTranslated;
+    if (beta != 0) tags |= soa::test::kMoving;
+    if (pitch != 0) tags |= soa::test::kHelical;
+    // Rounding of the reference grows with the velocities it multiplies, v(k+1) included.
+    const double scale =
+        std::max(1.0, (wp.norm() + std::abs(beta)) * (vp.norm() + wp.norm() * ell.norm() +
+                                                      std::abs(beta) * (1 + std::abs(pitch))));
+    auto mistakes = [&] {
+      auto v = [&](Screw e) { return MatX(helical_variant(w, l, axis, pitch, beta, e).vector()); };
+      return Mistakes{
+          {"dropped term",
+           "your a(k) is the revolute hinge's of exercise 4.2: the screw also slides, Delta_v = "
+           "h beta a, and the turning of body k+1 changes that velocity too: what does omega' "
+           "do to it?",
+           v(Screw::Revolute)},
+          {"dropped term",
+           "your linear part has h beta omega' x a once: the slide enters twice, as omega(k) x "
+           "Delta_v (the sliding velocity turns with the bodies) and in omega' x (v(k) - "
+           "v(k+1)) (the lever arm grows along the axis)",
+           v(Screw::SlideOnce)},
+          {"sign",
+           "your slide term has the opposite sign: write v(k) - v(k+1) = omega' x l + Delta_v "
+           "and keep the order of the cross products",
+           v(Screw::SlideSign)},
+          {"neighbour index",
+           "your a(k) uses omega(k) = omega' + beta a where the formula has omega' = omega(k+1) "
+           "(the Coriolis term comes from the inboard body's rotation)",
+           v(Screw::BodyOmega)},
+          {"sign", "your angular part is beta a x omega': it is omega' x beta a",
+           v(Screw::AngularOrder)},
+      };
+    };
+    check.add(
+        i, a.vector(), a_ref.vector(), scale, tags,
+        [&] {
+          return soa::test::code("omega_parent", w) + soa::test::code("l", l) +
+                 soa::test::code("axis", axis) + "double pitch = " + soa::test::num(pitch) +
+                 ", beta = " + soa::test::num(beta) +
+                 ";\nsoa::Acceleration a = soa::ex04::helical_coriolis(omega_parent, l, axis, "
+                 "pitch, beta);\n";
+        },
+        mistakes, soa::test::spatial("a(k)"));
+  }
+}
+
+// The signs of exercise 4.9 from the statics of the hinges, with a classic mistake in it (or
+// none): G(k) = -a_k* sum_{i carried} l(P, C_i) x m_i g, 0 when |G(k)| <= 1e-9 W_k.
+enum class Statics { Right, OwnBody, Inboard, AllBodies, AxisUnrotated, AboutOrigin };
+VecX statics_signs(const soa::Model& m, const soa::Workspace& ws, Statics e) {
+  VecX s(m.nv());
+  for (int k = 1; k <= m.n(); ++k) {
+    const soa::Pose& O = ws.pose[std::size_t(k - 1)];
+    const Vec3 a = e == Statics::AxisUnrotated ? Vec3(m.body(k).hinge.axis)
+                                               : Vec3(O.R() * m.body(k).hinge.axis);
+    const Vec3 P = e == Statics::AboutOrigin ? Vec3::Zero() : Vec3(O.l());
+    const int first = e == Statics::OwnBody || e == Statics::Inboard ? k : 1;
+    const int last = e == Statics::Inboard || e == Statics::AllBodies ? m.n() : k;
+    Vec3 moment = Vec3::Zero();
+    double W = 0;
+    for (int i = first; i <= last; ++i) {
+      const soa::SpatialInertia& Mi = m.body(i).M;
+      const Vec3 c = ws.pose[std::size_t(i - 1)].apply(Mi.p());
+      moment += (c - P).cross(Mi.mass() * m.gravity);
+      W += Mi.mass() * (1 + (c - Vec3(O.l())).norm());
+    }
+    const double G = -a.dot(moment);
+    s[m.body(k).v_offset] = std::abs(G) <= 1e-9 * W * m.gravity.norm() ? 0.0 : G > 0 ? 1.0 : -1.0;
+  }
+  return s;
+}
+
+// 4.9: the signs against those of soa::inverse_dynamics at rest, on revolute chains under
+// gravity along -z; in every third case one or two hinges have their axis turned vertical
+// (no gravity torque, whatever the pose). An entry whose torque is within a factor 1000 of the
+// threshold either way is not judged.
+TEST(Exercise4_9_GravityTorqueSigns, MatchesInverseDynamics) {
+  Random<double> rnd;
+  Check check("the signs of G(k), the hinge forces that hold the chain", 1e-4);
+  const CaseOptions opt{false, true, false, false, false};
+  int zeros = 0;  // hinges without gravity torque among the cases
+  for (int i = 0; i < kCases; ++i) {
+    ChainCase c = soa::test::draw_chain_case(rnd, i, opt);
+    soa::Model& m = c.m;
+    m.gravity = Vec3(0, 0, -9.81);
+    c.tags |= soa::test::kGravity;
+    soa::Workspace ws(m);
+    if (i % 3 == 0)  // axes turned vertical, base to tip: the inboard poses stay as they are
+      for (int k = m.n(); k >= 1; --k) {
+        if (rnd.engine()() % 2 == 0 && k != 1 + i % m.n()) continue;
+        soa::update_phi(m, c.x.theta, ws);
+        soa::update_poses(m, ws);
+        const Mat3 R_in = k < m.n() ? Mat3(ws.pose[std::size_t(k)].R()) : Mat3::Identity();
+        m.body(k).hinge.axis = (R_in * m.body(k).placement.R()).transpose() * Vec3::UnitZ();
+      }
+    soa::update_phi(m, c.x.theta, ws);
+    soa::update_poses(m, ws);
+    const VecX s = soa::ex04::gravity_torque_signs(m, c.x.theta);
+    soa::Workspace ref(m);
+    const VecX G = library_T(m, c.x, VecX::Zero(m.nv()), {}, ref);
+    // The reference signs, and the entries too close to the threshold to judge.
+    VecX expected(m.nv()), got = s;
+    for (int k = 1; k <= m.n(); ++k) {
+      double W = 0;
+      for (int b = 1; b <= k; ++b)
+        W += m.body(b).M.mass() * (1 + (ws.pose[std::size_t(b - 1)].apply(m.body(b).M.p()) -
+                                        ws.pose[std::size_t(k - 1)].l())
+                                           .norm());
+      W *= m.gravity.norm();
+      const int d = m.body(k).v_offset;
+      const double g = G[d];
+      expected[d] = std::abs(g) <= 1e-9 * W ? 0.0 : g > 0 ? 1.0 : -1.0;
+      zeros += expected[d] == 0;
+      if (std::abs(g) > 1e-12 * W && std::abs(g) <= 1e-6 * W && got.size() == expected.size())
+        got[d] = expected[d];
+    }
+    auto mistakes = [&] {
+      auto v = [&](Statics e) { return MatX(statics_signs(m, ws, e)); };
+      return Mistakes{
+          soa::test::negated(expected,
+                             "your signs are those of gravity's torque: G(k) is the force of the "
+                             "hinge that holds the chain, which pushes the other way"),
+          {"dropped term",
+           "you took body k's weight alone: hinge k holds up everything outboard of it, bodies "
+           "1 ... k (the tip is body 1)",
+           v(Statics::OwnBody)},
+          {"neighbour index",
+           "you took the bodies inboard of hinge k (k ... n): hinge k carries the bodies outboard "
+           "of it, 1 ... k (the tip is body 1)",
+           v(Statics::Inboard)},
+          {"neighbour index",
+           "you took every body of the chain: hinge k carries only bodies 1 ... k, the inboard "
+           "ones rest on the hinges nearer the base",
+           v(Statics::AllBodies)},
+          {"wrong frame",
+           "your axis a_k is in O_k coordinates while the moment is in inertial ones: turn it, "
+           "R_k a_k (ws.pose[k-1].R())",
+           v(Statics::AxisUnrotated)},
+          {"wrong point",
+           "your moment is about the inertial origin: a hinge turns about its own axis, take "
+           "moments about a point of it (O_k)",
+           v(Statics::AboutOrigin)},
+      };
+    };
+    check.add(
+        i, got, expected, 1.0, c.tags,
+        [&] {
+          return c.code() + "soa::VecX<double> s = soa::ex04::gravity_torque_signs(m, x.theta);\n";
+        },
+        mistakes, soa::test::per_dof(m, "sign G"));
+  }
+  EXPECT_GT(zeros, kCases / 5) << "the cases should have hinges with a vertical axis";
+}

@@ -33,3 +33,15 @@ soa_plant(4.7 transpose
   WRONG [=[(B.transpose() * (es.op.M * B_dot + es.h_breve * B)).transpose()]=]
   TYPE [=[MatX<double>]=]
   EXPECT [=[likely mistake \(transpose\): your result is C_v\*]=])
+soa_plant(4.8 slide-once
+  FIND [=[2.0 * beta * pitch * w.cross(axis)]=]
+  WRONG [=[beta * pitch * w.cross(axis)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your linear part has h beta omega' x a once]=])
+soa_plant(4.9 sign
+  FIND [=[-a.dot(moment)]=]
+  WRONG [=[a.dot(moment)]=] TYPE [=[double]=]
+  EXPECT [=[likely mistake \(sign\): your signs are those of gravity's torque]=])
+soa_plant(4.9 pose-of-hinge
+  FIND [=[ws.pose[std::size_t(i - 1)].apply(Mi.p())]=]
+  WRONG [=[O.apply(Mi.p())]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: every case unless there is more than one body passes]=])

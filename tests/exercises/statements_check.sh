@@ -7,7 +7,8 @@
 #     bug), and each of those a ladder of at least three hints in hints.md with the lesson
 #     section that teaches it ("Taught in:");
 #   - the lesson's README table has a row for each exercise;
-#   - the lesson program points to each exercise where its material is taught ("now do N.K");
+#   - the lesson program and the lesson's page in the notes point to each exercise where its
+#     material is taught ("now do N.K");
 #   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh).
 #   statements_check.sh <source dir> <scratch dir>
 set -eu
@@ -32,11 +33,14 @@ for dir in exercises/[0-9][0-9]-*/; do
       echo "$all" | grep -qx "$used" || say "$hpp: exercise $ex uses $used, which does not exist"
     done
     grep -q "^| $ex |" "$dir/README.md" || say "$dir/README.md: no row for exercise $ex"
-    prog=$(ls lessons/$nn-*/lesson.cpp 2>/dev/null | head -1)
     exre=$(echo "$ex" | sed 's/\./\\./')
-    if [ -n "$prog" ] && ! grep -i "now do" "$prog" | grep -q "\b$exre\b"; then
-      say "$prog: no 'now do $ex' where its material is taught"
-    fi
+    for prog in lessons/$nn-*/lesson.cpp docs/lesson$nn.md; do
+      [ -f "$prog" ] || continue
+      # "Now do exercises 6.1 (...), 6.4 (...)": the sentence may run over three lines.
+      if ! grep -i -A2 "now do" "$prog" | grep -q "\b$exre\b"; then
+        say "$prog: no 'now do $ex' where its material is taught"
+      fi
+    done
     case "$meta" in
       *"Level 3 of 3"*)
         hints=$dir/hints.md
