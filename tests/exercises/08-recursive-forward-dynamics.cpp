@@ -228,12 +228,11 @@ TipSweep tip_sweep(const Case& c, Tip v) {
 TEST(Exercise8_1_TipToBase, MatchesLibrary) {
   Random<double> rnd;
   const double tol = 64 * 8 * kEps;
-  // A Check reports when it goes out of scope, the last declared first, and the table shows
-  // the first report: the checks are declared from the last quantity of the sweep to the first.
-  Check nu_check("nu(k) = epsilon(k) / D(k)", tol),
-      eps_check("epsilon(k) = T(k) - H(k) z(k), the innovations", tol),
+  // The checks report in the order they are declared, the sweep's: the table shows the first.
+  Check z_check("z(k), the bias force of articulated body k", tol),
       zp_check("z+(k), the bias force carried across hinge k", tol),
-      z_check("z(k), the bias force of articulated body k", tol);
+      eps_check("epsilon(k) = T(k) - H(k) z(k), the innovations", tol),
+      nu_check("nu(k) = epsilon(k) / D(k)", tol);
   Opts o;
   o.types = {HingeType::Revolute};
   o.gravity = false;

@@ -56,6 +56,8 @@ enum Tag : unsigned {
   kOffsetCom = 1u << 9,       ///< a centre of mass away from the frame's origin
   kRotated = 1u << 10,        ///< a frame rotated relative to the other
   kTranslated = 1u << 11,     ///< a frame offset from the other
+  kOwn1 = 1u << 16,           ///< a feature of the exercise's own: Check::tag_meaning() says which
+  kOwn2 = 1u << 17,           ///< another of the exercise's own
 };
 
 /// What a tag means for a student: the case it marks, and what a mistake confined to such
@@ -346,7 +348,7 @@ class Check {
            double scale, unsigned tags, const std::function<std::string()>& inputs,
            const std::function<Mistakes()>& mistakes = {}, const Naming& naming = {}) {
     ++cases_;
-    for (const auto& t : tag_meanings()) (tags & t.tag ? with_ : without_)[t.tag].cases++;
+    for (const auto& t : meanings()) (tags & t.tag ? with_ : without_)[t.tag].cases++;
     const MatX<double> g = got.template cast<double>(), e = expected.template cast<double>();
     if (g.rows() != e.rows() || g.cols() != e.cols()) {
       if (shape_.empty())
@@ -462,9 +464,12 @@ class Check {
   }
   std::vector<TagMeaning> meanings() const {
     std::vector<TagMeaning> m = tag_meanings();
-    for (const TagMeaning& o : overrides_)
+    for (const TagMeaning& o : overrides_) {
+      bool known = false;
       for (TagMeaning& t : m)
-        if (t.tag == o.tag) t = o;
+        if (t.tag == o.tag) t = o, known = true;
+      if (!known) m.push_back(o);  // kOwn1, kOwn2
+    }
     return m;
   }
   struct Count {
@@ -484,7 +489,7 @@ class Check {
   }
   void fail(unsigned tags) {
     ++failed_;
-    for (const auto& t : tag_meanings()) (tags & t.tag ? with_ : without_)[t.tag].failed++;
+    for (const auto& t : meanings()) (tags & t.tag ? with_ : without_)[t.tag].failed++;
   }
 
   // A tag that all failing cases have while the cases without it all pass.
