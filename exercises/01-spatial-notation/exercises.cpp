@@ -47,4 +47,15 @@ Pose exp_twist(const Velocity& xi) {
   throw exercise::NotDone("1.7 exp_twist");
 }
 
+Force force_cross(const Velocity& X, const Force& f) {
+  (void)X;
+  (void)f;
+  throw exercise::NotDone("1.8 force_cross");
+}
+
+int spatial_cross_rank(const Velocity& X) {
+  (void)X;
+  throw exercise::NotDone("1.9 spatial_cross_rank");
+}
+
 }  // namespace soa::ex01

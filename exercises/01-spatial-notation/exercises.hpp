@@ -4,7 +4,8 @@
 /// `make exercises` to see which ones pass. The tests compare your function with the library
 /// on many random cases.
 ///
-/// Rules of the game: write each one from the formula on its slide. You may use the library's
+/// Rules of the game: write each one from the formula on its slide (the level 3 ones: from
+/// the formula you work out). You may use the library's
 /// types (soa::Phi, soa::Force, ...), their accessors (R(), l(), angular(), linear(), mass(),
 /// h(), J(), ...), soa::tilde() for 3-vectors and Eigen, but not the library function that
 /// the exercise asks you to reproduce (named in each statement): the test compares with it.
@@ -12,13 +13,20 @@
 /// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular first, \f$V = [\omega; v]\f$,
 /// \f$f = [N; F]\f$; \f${}^x R_y\f$ maps y-coordinates to x-coordinates; a soa::Phi
 /// \f$\phi(x,y)\f$ holds \f$R = {}^x R_y\f$ and \f$l = {}^x l(x,y)\f$ (slide 43).
+///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out: derive the formula, predict then check, or find the bug in given code),
+/// the time it usually takes, and the exercises it builds on ("uses 1.2": the same idea, done
+/// there first; never a call to your code of that exercise). Stuck on one?
+/// `make exercises HINT=1.8` prints its hints one at a time (exercises/01-spatial-notation/hints.md).
 #pragma once
 
 #include "soa/soa.hpp"
 
 namespace soa::ex01 {
 
-/// **Exercise 1.1 — Move a spatial force across a rigid body (slides 48-49, 43).**
+/// **Exercise 1.1: Move a spatial force across a rigid body (slides 48-49, 43).**
+/// *Level 1 of 3, about 15 min.*
 ///
 /// Return \f$f(x) = \phi(x,y)\, f(y)\f$, in x-coordinates, for the force \p f_y given in
 /// y-coordinates. Work from the blocks of slide 43,
@@ -31,7 +39,8 @@ namespace soa::ex01 {
 /// `f_y.angular()`, `f_y.linear()`, and soa::Force(N, F).
 Force apply_phi(const Phi& phi_xy, const Force& f_y);
 
-/// **Exercise 1.2 — The spatial cross product (slide 53).**
+/// **Exercise 1.2: The spatial cross product (slide 53).**
+/// *Level 1 of 3, about 10 min.*
 ///
 /// Return \f$\tilde X\, Y\f$ for the motion vectors \f$X = [x; y]\f$ and
 /// \f$Y = [\omega; v]\f$, with
@@ -43,7 +52,8 @@ Force apply_phi(const Phi& phi_xy, const Force& f_y);
 /// Do not call soa::cross() or the 6x6 soa::tilde(const SpatialVector&).
 Acceleration spatial_cross(const Velocity& X, const Velocity& Y);
 
-/// **Exercise 1.3 — The parallel axis theorem for spatial inertias (slides 66, 70).**
+/// **Exercise 1.3: The parallel axis theorem for spatial inertias (slides 66, 70).**
+/// *Level 2 of 3, about 40 min; uses 1.1.*
 ///
 /// Given the spatial inertia \p M_y about point y, as its ten numbers \f$(m,\ h(y) = m\,
 /// p(y),\ J(y))\f$ in y-coordinates, and \f$\phi(x,y)\f$ (\f$R = {}^x R_y\f$, \f$l = {}^x
@@ -59,7 +69,8 @@ Acceleration spatial_cross(const Velocity& X, const Velocity& Y);
 /// Do not call soa::transform(), SpatialInertia::from_cm(), J_cm() or matrix().
 SpatialInertia parallel_axis(const Phi& phi_xy, const SpatialInertia& M_y);
 
-/// **Exercise 1.4 — A unit quaternion from axis and angle (slide 19).**
+/// **Exercise 1.4: A unit quaternion from axis and angle (slide 19).**
+/// *Level 1 of 3, about 15 min.*
 ///
 /// Return the unit quaternion of the rotation through \p theta (radians, any sign) about the
 /// axis \p n, vector part first:
@@ -74,8 +85,8 @@ SpatialInertia parallel_axis(const Phi& phi_xy, const SpatialInertia& M_y);
 /// \tilde n\f$.
 UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta);
 
-/// **Exercise 1.5 — Kinetic energy about a point that is not the centre of mass
-/// (slides 67-73).**
+/// **Exercise 1.5: Kinetic energy about a point that is not the centre of mass (slides 67-73).**
+/// *Level 2 of 3, about 25 min.*
 ///
 /// Return the kinetic energy \f$T = \tfrac12 V^*(x)\, M(x)\, V(x)\f$ of a body with spatial
 /// inertia \p M_x about x and spatial velocity \p V_x at x, from the ten numbers
@@ -88,7 +99,8 @@ UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta);
 /// Do not call SpatialInertia::kinetic_energy(), operator*, or matrix().
 double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x);
 
-/// **Exercise 1.6 — Reversing a spatial velocity (slides 46, 36).**
+/// **Exercise 1.6: Reversing a spatial velocity (slides 46, 36).**
+/// *Level 1 of 3, about 15 min.*
 ///
 /// Frames x and y move relative to each other. Given \f$\phi(x,y)\f$ (\f$R = {}^x R_y\f$,
 /// \f$l = {}^x l(x,y)\f$) and \f$V(x,y)\f$, the velocity of y relative to x, in
@@ -101,7 +113,8 @@ double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x);
 /// Do not call Phi::transpose_apply(), Phi::inverse() or Phi::matrix().
 Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy);
 
-/// **Exercise 1.7 — The exponential of SE(3) (slide 63).**
+/// **Exercise 1.7: The exponential of SE(3) (slide 63).**
+/// *Level 2 of 3, about 45 min.*
 ///
 /// Return the pose \f$\exp(\hat\xi) = (R, l)\f$ of the twist \f$\xi = [\omega; v]\f$,
 /// \f$\hat\xi = \begin{pmatrix} \tilde\omega & v \\ 0 & 0 \end{pmatrix}\f$, from its closed form
@@ -119,5 +132,45 @@ Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy);
 ///
 /// Do not call soa::exp_se3(), soa::exp_so3(), soa::dexp_so3() or soa::g_series().
 Pose exp_twist(const Velocity& xi);
+
+/// **Exercise 1.8: The cross product of forces, worked out from power (slides 53-55).**
+/// *Level 3 of 3, about 30 min; uses 1.2.*
+///
+/// The spatial cross product \f$\tilde X\f$ of exercise 1.2 acts on motion vectors. Forces
+/// get their own operator, \f$\bar X\f$, defined by the power it pairs with (lesson 1, section
+/// "Spatial cross products"): for the motion vector \f$X\f$, \f$\bar X\f$ is the 6x6 operator
+/// on forces with
+/// \f[ (\bar X f)^* Y = -f^* (\tilde X Y) \qquad \text{for every force } f
+///     \text{ and every motion vector } Y . \f]
+/// Given \p X \f$= [x; y]\f$ (angular part first) and the force \p f \f$= [N; F]\f$ (moment
+/// first), return \f$\bar X f\f$ as a soa::Force, moment part first.
+///
+/// The statement does not give the blocks of \f$\bar X\f$: work them out from the definition
+/// (write \f$\tilde X\f$ by its 3x3 blocks, see what the definition says about \f$\bar X\f$
+/// and \f$\tilde X^*\f$, and use \f$\tilde a^* = -\tilde a\f$ for 3-vectors), then write
+/// \f$\bar X f\f$ with 3D cross products. Check yourself: with \f$Y = X\f$ the definition
+/// and \f$\tilde X X = 0\f$ give \f$(\bar X f)^* X = 0\f$ for every f.
+///
+/// Do not call soa::cross_bar(), soa::bar(), soa::tilde(const SpatialVector&) or soa::cross():
+/// the test compares with soa::cross_bar() and checks the definition on random Y.
+Force force_cross(const Velocity& X, const Force& f);
+
+/// **Exercise 1.9: Predict the rank of a spatial cross product (slides 53-54).**
+/// *Level 3 of 3, about 25 min; uses 1.2.*
+///
+/// For the motion vector \p X \f$= [x; y]\f$ the 6x6 matrix
+/// \f$\tilde X = \begin{pmatrix} \tilde x & 0 \\ \tilde y & \tilde x \end{pmatrix}\f$
+/// (slide 53) sends some motion vectors \f$Y\f$ to zero: \f$X\f$ itself, by slide 54, and
+/// which others? Predict the rank of \f$\tilde X\f$, that is 6 minus the dimension of the
+/// space of solutions \f$Y = [\omega; v]\f$ of \f$\tilde X Y = 0\f$, and return it.
+///
+/// Work it out on paper first: solve \f$\tilde X Y = 0\f$ block row by block row (the first
+/// row constrains \f$\omega\f$ alone), and count the free parameters. The answer depends on
+/// which of x and y are zero, not otherwise on their values. \p X has exact zeros where a
+/// part vanishes (test with `x.isZero(0.0)`, or compare with `Vec3<double>::Zero()`).
+///
+/// Do not form the 6x6 matrix or call a rank-revealing decomposition: decide from x and y.
+/// The test computes the rank of soa::tilde(X) with Eigen's FullPivLU and compares.
+int spatial_cross_rank(const Velocity& X);
 
 }  // namespace soa::ex01

@@ -8,6 +8,12 @@
 /// (soa::SpatialInertia: `M.mass()`, `M.p()`, `M.J()`, `M.J_cm()`, `M.matrix()`).
 /// Every vector of one exercise is in one frame (the body frame).
 ///
+/// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
+/// 3: work it out: derive, predict then check, or find the bug in given code), the time it
+/// usually takes, and the exercises it builds on ("uses 2.3": the same idea, done there
+/// first; never a call to your code of that exercise). `make exercises HINT=2.6` prints the
+/// hints of an exercise one at a time (exercises/02-single-rigid-body/hints.md).
+///
 /// The stubs in exercises.cpp throw soa::exercise::NotDone; replace each body with your code
 /// and run `make exercises`. Do not call the library function an exercise reproduces (named
 /// in its statement); the other library functions are yours to use.
@@ -18,6 +24,7 @@
 namespace soa::ex02 {
 
 /// **Exercise 2.1: the gyroscopic term.**
+/// *Level 1 of 3, about 10 min.*
 /// A body with spatial inertia \f$M(x)\f$ about its point x moves with \f$V(x) = [\omega; v]\f$.
 /// Return the gyroscopic term of its equations of motion about x (lesson 2, section 3):
 /// \f[ b(x) = \begin{pmatrix} \tilde\omega\, J(x)\, \omega
@@ -26,6 +33,7 @@ namespace soa::ex02 {
 Force gyroscopic_term(const SpatialInertia& M, const Velocity& V);
 
 /// **Exercise 2.2: the spatial force, through the centre of mass.**
+/// *Level 2 of 3, about 30 min; uses 1.1.*
 /// A body of mass \p m with inertia \p J_C about its centre of mass C has its frame at the
 /// point x, with \p p \f$= p(x) = l(x, C)\f$. At some instant x moves with \p V \f$= V(x) =
 /// [\omega; v(x)]\f$ and \p alpha \f$= \alpha(x) = [\dot\omega; \dot v(x)]\f$ (inertial
@@ -43,6 +51,7 @@ Force spatial_force(double m, const Mat3<double>& J_C, const Vec3<double>& p, co
                     const Acceleration& alpha);
 
 /// **Exercise 2.3: the rates of a free body.**
+/// *Level 2 of 3, about 30 min.*
 /// The state \p x of a free body with frame at x (soa::FreeBodyState: attitude `x.q` =
 /// \f${}^I R_B\f$, position `x.r` = \f${}^I l(I, x)\f$, velocity `x.V` = \f$[\omega; v]\f$ in
 /// body coordinates) is acted on by the spatial force \p f at x, in body coordinates.
@@ -57,6 +66,7 @@ Force spatial_force(double m, const Mat3<double>& J_C, const Vec3<double>& p, co
 FreeBodyRateT<double> body_rates(const SpatialInertia& M, const FreeBodyState& x, const Force& f);
 
 /// **Exercise 2.4: one step of the Lie-group RK4 (Runge-Kutta-Munthe-Kaas), torque-free.**
+/// *Level 2 of 3, about 45 min; uses 2.3.*
 /// Advance the torque-free body from \p x0 by the step \p h. Over the step the attitude is
 /// \f$\mathfrak q_0 \otimes \exp(\delta)\f$ with a rotation vector \f$\delta\f$ that starts at
 /// 0 and moves as \f$\dot\delta = \mathrm{dexp}^{-1}_{-\delta}\,\omega\f$; classical RK4 runs
@@ -81,6 +91,7 @@ FreeBodyRateT<double> body_rates(const SpatialInertia& M, const FreeBodyState& x
 FreeBodyState rk4_torque_free(const SpatialInertia& M, const FreeBodyState& x0, double h);
 
 /// **Exercise 2.5: the equations of motion in body coordinates.**
+/// *Level 1 of 3, about 20 min; uses 1.8.*
 /// A body with spatial inertia \p M \f$= M(x)\f$ about its point x moves with
 /// \p V \f$= V(x) = [\omega; v]\f$, both in body coordinates, and \p V_dot
 /// \f$= \dot V = [\dot\omega; \dot v]\f$ holds the rates of those body-frame components (the
@@ -94,5 +105,53 @@ FreeBodyState rk4_torque_free(const SpatialInertia& M, const FreeBodyState& x0, 
 /// soa::rigid_body_force: the test compares your force with
 /// \f$M(x)\,\alpha(x) + b(x)\f$ at \f$\alpha(x) = [\dot\omega;\ \dot v + \omega \times v]\f$.
 Force body_frame_force(const SpatialInertia& M, const Velocity& V, const Acceleration& V_dot);
+
+/// The prediction of exercise 2.6.
+struct SpinStability {
+  bool stable;  ///< true when a small perturbation stays small (it oscillates)
+  double rate;  ///< unstable: the growth rate \f$\lambda\f$ (1/s) of \f$e^{\lambda t}\f$;
+                ///< stable: the angular frequency \f$\nu\f$ (rad/s) of the wobble
+};
+
+/// **Exercise 2.6: predict whether a spin about a principal axis is stable.**
+/// *Level 3 of 3, about 40 min.*
+/// A torque-free rigid body, its body axes along the principal axes of inertia at its centre
+/// of mass, has the principal moments \p J \f$= (J_0, J_1, J_2)\f$ (positive, all different).
+/// It spins at the rate \p spin \f$= \Omega\f$ (rad/s, either sign, not zero) about the
+/// principal axis number \p axis (0, 1 or 2): \f$\omega = \Omega\, e_{axis}\f$. Give the
+/// angular velocity a small nudge \f$\delta\omega\f$. To first order in \f$\delta\omega\f$,
+/// the nudge either grows like \f$e^{\lambda t}\f$ (the spin is unstable) or oscillates like
+/// \f$\cos(\nu t)\f$ (stable). Predict which, and how fast: return `stable` and `rate`
+/// (\f$\lambda\f$ when unstable, \f$\nu\f$ when stable).
+///
+/// The statement does not give the formula: derive it by linearizing Euler's equation at the
+/// centre of mass, \f$J\dot\omega + \omega \times J\omega = 0\f$ (lesson 2, section 1), about
+/// \f$\omega = \Omega e_{axis}\f$: write the two components of \f$\delta\omega\f$ across the
+/// spin axis, differentiate once more, and read off the sign of the coefficient. Lesson 2,
+/// section 7 quotes the answer for one case (the intermediate axis, \f$J_0 < J_1 < J_2\f$);
+/// yours must hold for every axis and every order of the moments. Then check your prediction
+/// against a simulation of your own (soa::rk4_step, as in section 7) before you run the test.
+///
+/// The test linearizes the library's soa::rigid_body_acceleration numerically about the spin
+/// and compares with the eigenvalues \f$\pm\lambda\f$ or \f$\pm i\nu\f$ of that linear system.
+SpinStability spin_stability(const Vec3<double>& J, int axis, double spin);
+
+/// **Exercise 2.7: find the bug in a Lie-group Euler step.**
+/// *Level 3 of 3, about 30 min; uses 2.3.*
+/// One step of the explicit Euler method for the free body of exercise 2.3 (state \p x0: the
+/// attitude \f$\mathfrak q = {}^I R_B\f$, the position \f${}^I l(I, x)\f$, the body-frame
+/// velocity \f$V = [\omega; v]\f$), under the applied force \p f at x in body coordinates held
+/// constant over the step \p h: every rate is taken at \p x0 (the rates of exercise 2.3,
+/// lesson 2, section 5), the position and the velocity move along a straight line,
+/// \f$r_1 = r_0 + h\,\dot r\f$ and \f$V_1 = V_0 + h\,\dot V\f$, and the attitude moves along
+/// the exact rotation of a body turning with the constant body-frame angular velocity
+/// \f$\omega\f$ for the time h (it stays a unit quaternion).
+///
+/// The stub in exercises.cpp already holds such a step, below its `throw` line, and it has
+/// exactly one bug. Find it (read each line against lesson 2, sections 4 and 5), fix it, and
+/// delete the `throw`. Check yourself: the step must agree with soa::rk4_step to first order
+/// in h, and a body spinning about a fixed axis must keep turning about that axis.
+FreeBodyState lie_euler_step(const SpatialInertia& M, const FreeBodyState& x0, const Force& f,
+                             double h);
 
 }  // namespace soa::ex02

@@ -232,6 +232,9 @@ int main(int argc, char** argv) {
   /// Quaternions compose as the matrices do, \f$R(\mathfrak a \otimes \mathfrak b) =
   /// R(\mathfrak a)\, R(\mathfrak b)\f$; \f$\mathfrak q\f$ and \f$-\mathfrak q\f$ name the same
   /// rotation, and from_matrix() returns the one with \f$q_0 \ge 0\f$.
+  ///
+  /// *Now do exercise 1.4* (`soa::ex01::quaternion_from_axis_angle`): this quaternion from an
+  /// axis of any length and an angle in radians, refusing an axis that names no rotation.
   checks.section("Attitude: unit quaternion, vector part first (slides 19-20)");
   const soa::UnitQuaternion q = soa::UnitQuaternion::exp(theta * n_axis);
   Eigen::Vector4d q_expected;
@@ -476,6 +479,9 @@ int main(int argc, char** argv) {
   /// \f[ V(y,x) = -\phi^*(y,x)\, V(x,y) . \f]
   /// Checked on A and B: \f$V(B,A)\f$ from finite differences of \f${}^B T_A(t) =
   /// {}^A T_B(t)^{-1}\f$.
+  ///
+  /// *Now do exercise 1.6* (`soa::ex01::reverse_velocity`): the reversal with the rotation
+  /// shown, from \f$V(x,y)\f$ in y-coordinates to \f$V(y,x)\f$ in x-coordinates.
   checks.section("Velocity reversal (slide 46)");
   const soa::Phi phi_BA = phi_AB.inverse();
   const soa::Velocity V_BA_A = -phi_BA.transpose_apply(V_AB_B);  // A V(B,A)
@@ -499,6 +505,9 @@ int main(int argc, char** argv) {
   /// \f[ f^*(A)\, V(A) = f^*(B)\, \phi^*(A,B)\, V(A) = f^*(B)\, V(B) . \f]
   /// Below, A and B are two frames fixed in one body, with the pose \f${}^A T_B\f$ of the
   /// motion at \f$t_0\f$ between them (a rotation as well as an offset).
+  ///
+  /// *Now do exercise 1.1* (`soa::ex01::apply_phi`): \f$f(x) = \phi(x,y)\, f(y)\f$ written
+  /// from \f$R\f$ and \f$l\f$, the two factors of slide 43.
   checks.section("Spatial forces, duality and power (slides 48-51)");
   const soa::Force f_B(Vec3d(0.3, -1.2, 0.5), Vec3d(2.0, 0.4, -1.5));
   const soa::Force f_A_free = soa::Phi::translation(l_AB).apply(f_B);
@@ -552,6 +561,11 @@ int main(int argc, char** argv) {
   /// commutator \f$(\tilde X Y)^\sim = \tilde X \tilde Y - \tilde Y \tilde X\f$ (it is the Lie
   /// bracket, slide 63). Because \f$\bar X = -\tilde X^*\f$, the two are dual:
   /// \f$f^* (\tilde X Y) = -(\bar X f)^* Y\f$.
+  ///
+  /// *Now do exercise 1.2* (`soa::ex01::spatial_cross`): \f$\tilde X Y\f$ from the blocks;
+  /// then the two that ask you to work it out: *exercise 1.8* (`soa::ex01::force_cross`)
+  /// derives \f$\bar X\f$ from the power pairing alone, and *exercise 1.9*
+  /// (`soa::ex01::spatial_cross_rank`) predicts the rank of \f$\tilde X\f$.
   checks.section("Spatial cross products (slides 53-57)");
   const soa::Velocity X(Vec3d(0.5, -1.0, 0.25), Vec3d(1.5, 0.3, -0.7));
   const soa::Velocity Y(Vec3d(-0.2, 0.8, 1.1), Vec3d(0.4, -0.9, 0.6));
@@ -767,6 +781,9 @@ int main(int argc, char** argv) {
   /// \f$\frac{d}{ds}M(s) = \tilde\xi M(s)\f$, \f$M(0) = I\f$ (the derivative of
   /// \f$\mathrm{Ad}(\exp(s\hat\xi))\f$ is \f$\mathrm{ad}\f$ at the identity, carried along by
   /// the homomorphism). API: soa::exp_se3(), soa::log_se3(), soa::dexp_so3().
+  ///
+  /// *Now do exercise 1.7* (`soa::ex01::exp_twist`): the closed form of \f$\exp(\hat\xi)\f$,
+  /// accurate at every angle down to \f$\theta = 0\f$.
   checks.section("SE(3): exponential and logarithm (slide 63)");
   const soa::Velocity xi(Vec3d(0.3, -1.2, 0.8), Vec3d(0.5, 0.4, -1.1));
   const soa::Pose E = soa::exp_se3(xi);
@@ -924,6 +941,11 @@ int main(int argc, char** argv) {
   /// the same about every point of the body (slides 72-73):
   /// \f$\tfrac12 V^*(x) M(x) V(x) = \tfrac12 V^*(x)\phi(x,y) M(y) \phi^*(x,y) V(x) =
   /// \tfrac12 V^*(y) M(y) V(y)\f$.
+  ///
+  /// *Now do exercise 1.3* (`soa::ex01::parallel_axis`): the theorem on the ten numbers
+  /// \f$(m, m p, J)\f$, through the centre of mass; and *exercise 1.5*
+  /// (`soa::ex01::kinetic_energy`): the kinetic energy about x from the same ten numbers,
+  /// without the 6x6.
   checks.section("Parallel axis theorem and kinetic energy (slides 70-73)");
   const soa::Phi phi_yx(soa::exp_so3(Vec3d(-0.6, 0.3, 0.2)), Vec3d(0.7, 0.1, -0.5));
   const soa::SpatialInertia M_y = soa::transform(phi_yx, M_x);

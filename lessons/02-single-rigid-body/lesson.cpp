@@ -266,6 +266,10 @@ int main(int argc, char** argv) {
   ///     \\ m\,\tilde\omega\tilde\omega\, p(x) \end{pmatrix}. \f]
   /// At \f$x = C\f$ (\f$p = 0\f$) it is the CM form again. The library computes
   /// soa::gyroscopic_force and soa::rigid_body_force; we compare them with the route through C.
+  ///
+  /// *Now do exercise 2.1* (`soa::ex02::gyroscopic_term`): \f$b(x)\f$ from its two cross
+  /// products; and *exercise 2.2* (`soa::ex02::spatial_force`): the force at x computed the
+  /// long way, through C, as in sections 1-3.
   checks.section("3. The equations of motion about x");
   const Force f_C = M_C * alpha_C + b_C;
   const Force f_x_via_C = phi_xC.apply(f_C);
@@ -309,8 +313,10 @@ int main(int argc, char** argv) {
   /// Substituted in \f$f = M\alpha + b\f$ this gives the body-frame form with the spatial cross
   /// product of slide 55, \f$f(x) = M(x)\,\dot V + \bar V(x)\,M(x)\,V(x)\f$, where
   /// \f$\bar V = -\tilde V^* = \begin{pmatrix} \tilde\omega & \tilde v \\ 0 & \tilde\omega
-  /// \end{pmatrix}\f$ acts on the momentum \f$M(x)V(x)\f$. Here it is checked on numbers;
-  /// exercise 2.5 (`soa::ex02::body_frame_force`) computes it from the blocks of \f$\bar V\f$.
+  /// \end{pmatrix}\f$ acts on the momentum \f$M(x)V(x)\f$. Here it is checked on numbers.
+  ///
+  /// *Now do exercise 2.5* (`soa::ex02::body_frame_force`): the body-frame form from the
+  /// blocks of \f$\bar V\f$ (exercise 1.8 works those blocks out).
   checks.section("4. The same law in body coordinates");
   const Acceleration V_dot_body(alpha_x.angular(), Vec3(alpha_x.linear()) - w.cross(v0));
   const Force f_body = M_x * V_dot_body + soa::cross_bar(V_x, M_x * V_x);
@@ -329,6 +335,10 @@ int main(int argc, char** argv) {
   /// Check: with an applied force, the rates rebuild \f$\alpha\f$ by section 4, and
   /// \f$M\alpha + b\f$ gives the force back; the quaternion rate is the derivative of
   /// \f$\mathfrak q \otimes \exp(t\omega)\f$ at t = 0.
+  ///
+  /// *Now do exercise 2.3* (`soa::ex02::body_rates`): these rates; then *exercise 2.7*
+  /// (`soa::ex02::lie_euler_step`), a Lie-group Euler step built on them, given with one bug
+  /// for you to find.
   checks.section("5. The free body: state and rates");
   FreeBodyState s;
   s.q = UnitQuaternion::exp(Vec3(0.4, -0.7, 0.2));
@@ -363,6 +373,9 @@ int main(int argc, char** argv) {
   /// \f$\mathfrak q_{n+1} = \mathfrak q_n \otimes \exp(\delta_{n+1})\f$: a product of unit
   /// quaternions, unit because \f$|a \otimes b| = |a|\,|b|\f$ (checked here on the raw product;
   /// section 7 runs the naive method for comparison).
+  ///
+  /// *Now do exercise 2.4* (`soa::ex02::rk4_torque_free`): one step of this method, stage by
+  /// stage.
   checks.section("6. A Lie-group Runge-Kutta method");
   const Vec4 raw = hamilton(s.q.coeffs(), UnitQuaternion::exp(Vec3(0.9, 0.1, -1.3)).coeffs());
   checks.check("|a (x) b| = |a| |b| = 1 for unit a, b (no normalization)", std::abs(raw.norm() - 1),
@@ -397,6 +410,10 @@ int main(int argc, char** argv) {
   /// computation and differ by rounding only (amplified by the unstable spin). We check that
   /// their difference is far below the attitude's truncation error, measured against a run
   /// with \f$h/8\f$.
+  ///
+  /// *Now do exercise 2.6* (`soa::ex02::spin_stability`): predict, for any body and each of
+  /// its principal axes, whether the spin is stable, and the growth rate or the wobble
+  /// frequency, by linearizing Euler's equation yourself.
   checks.section("7. The Dzhanibekov flip, simulated about a point away from C");
   const double mass = 1.0, Omega = 2 * std::acos(-1.0), T = 20.0, h_ref = 0.005;
   const double t1 = 3.0;  // after the first flip, back to a steady spin

@@ -12,10 +12,10 @@ namespace soa::ex01 {
 // N(x) = N(y) + l(x,y) x F(y) and F(x) = F(y).
 Force apply_phi(const Phi& phi_xy, const Force& f_y) {
   const Mat3<double>& R = phi_xy.R();
-  const Vec3<double> N_y = R * f_y.angular();  // N(y), x-coordinates
-  const Vec3<double> F = R * f_y.linear();     // F(y) = F(x), x-coordinates
-  const Vec3<double> N_x = N_y + tilde(phi_xy.l()) * F;
-  return Force(N_x, F);
+  const Vec3<double> N_y = R * f_y.angular();              // N(y), x-coordinates
+  const Vec3<double> F = R * f_y.linear();                 // F(y) = F(x), x-coordinates
+  const Vec3<double> offset_moment = phi_xy.l().cross(F);  // l(x,y) x F, x-coordinates
+  return Force(Vec3<double>(N_y + offset_moment), F);
 }
 
 // 1.2, slide 53: [x~ 0; y~ x~] [w; v] = [x~ w; y~ w + x~ v].
@@ -48,7 +48,8 @@ UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta) {
   const double length = n.norm();
   if (!(length > 0.0)) throw Error("quaternion_from_axis_angle: zero axis names no rotation");
   const Vec3<double> unit = n / length;
-  return UnitQuaternion(std::sin(theta / 2) * unit, std::cos(theta / 2));
+  const double half = theta / 2;
+  return UnitQuaternion(std::sin(half) * unit, std::cos(half));
 }
 
 // 1.5, slide 68: V* M V = w* J w + w* h~ v - v* h~ w + m v* v = w* J w + 2 w.(h x v) + m v.v,
@@ -87,6 +88,26 @@ Pose exp_twist(const Velocity& xi) {
   }
   const Mat3<double> W = tilde(w), W2 = W * W, I = Mat3<double>::Identity();
   return Pose(I + g1 * W + g2 * W2, (I + g2 * W + g3 * W2) * Vec3<double>(xi.linear()));
+}
+
+// 1.8, slides 53-55: (X_bar f)* Y = -f* (X~ Y) for all f, Y says X_bar = -X~*. With
+// X~ = [x~ 0; y~ x~] and x~* = -x~: X~* = -[x~ y~; 0 x~], so X_bar = [x~ y~; 0 x~] and
+// X_bar f = [x x N + y x F; x x F].
+Force force_cross(const Velocity& X, const Force& f) {
+  const Vec3<double> x = X.angular(), y = X.linear();
+  const Vec3<double> N = f.angular(), F = f.linear();
+  return Force(Vec3<double>(x.cross(N) + y.cross(F)), Vec3<double>(x.cross(F)));
+}
+
+// 1.9, slides 53-54: X~ [w; v] = [x x w; y x w + x x v] = 0.
+// - x != 0: the first row gives w = a x; the second, x x (v - a y) = 0, so v = a y + b x:
+//   two free parameters (a, b), the kernel is spanned by X = [x; y] and [0; x]: rank 4.
+// - x = 0, y != 0: y x w = 0 gives w = a y, v is free: four parameters, rank 2.
+// - X = 0: X~ = 0, rank 0.
+int spatial_cross_rank(const Velocity& X) {
+  const bool x_zero = X.angular().isZero(0.0), y_zero = X.linear().isZero(0.0);
+  if (!x_zero) return 4;
+  return y_zero ? 0 : 2;
 }
 
 }  // namespace soa::ex01

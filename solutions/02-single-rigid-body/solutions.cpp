@@ -1,5 +1,6 @@
 // Lesson 2 exercises, solved from the formulas of the statements (exercises.hpp).
 #include <Eigen/Cholesky>
+#include <cmath>
 
 #include "exercises.hpp"
 
@@ -75,8 +76,38 @@ Force body_frame_force(const SpatialInertia& M, const Velocity& V, const Acceler
   const Vec6<double> h = M.matrix() * V.vector();
   const Vec3<double> h_w = h.head<3>(), h_v = h.tail<3>();
   const Vec6<double> f = M.matrix() * V_dot.vector();
-  return Force(Vec3<double>(f.head<3>() + w.cross(h_w) + v.cross(h_v)),
-               Vec3<double>(f.tail<3>() + w.cross(h_v)));
+  const Vec6<double> V_bar_h =
+      (Vec6<double>() << w.cross(h_w) + v.cross(h_v), w.cross(h_v)).finished();
+  return Force(Vec6<double>(f + V_bar_h));
+}
+
+// 2.6: linearize J w_dot + w x J w = 0 about w = W e_i (i = axis, j, k the next two,
+// cyclically). With w = W e_i + d and the principal axes as body axes, to first order
+//   J_j d_j' = (J_k - J_i) W d_k,   J_k d_k' = (J_i - J_j) W d_j   (d_i' = 0),
+// so d_j'' = s d_j with s = W^2 (J_k - J_i)(J_i - J_j) / (J_j J_k): e^{+-sqrt(s) t} when
+// s > 0 (i the intermediate axis), cos(sqrt(-s) t) when s < 0 (the largest or the smallest).
+SpinStability spin_stability(const Vec3<double>& J, int axis, double spin) {
+  const int i = axis, j = (axis + 1) % 3, k = (axis + 2) % 3;
+  const double s = spin * spin * (J[k] - J[i]) * (J[i] - J[j]) / (J[j] * J[k]);
+  return SpinStability{s < 0.0, std::sqrt(std::abs(s))};
+}
+
+// 2.7: the given step turned the attitude by exp(h w) on the left, as if w were in inertial
+// coordinates. w is the body-frame angular velocity: R_dot = R w~ (q_dot = q (x) [w; 0] / 2),
+// whose solution for constant w is R(t) = R0 exp(t w~), so the update multiplies on the right.
+FreeBodyState lie_euler_step(const SpatialInertia& M, const FreeBodyState& x0, const Force& f,
+                             double h) {
+  const Vec3<double> w = x0.V.angular(), v = x0.V.linear();
+  const Force b(Vec3<double>(w.cross(M.J() * w)), Vec3<double>(w.cross(w.cross(M.h()))));
+  const Vec6<double> alpha = M.matrix().llt().solve((f - b).vector());
+  Vec6<double> V_dot;
+  V_dot << alpha.head<3>(), alpha.tail<3>() - w.cross(v);
+  const Vec3<double> r_dot = x0.q.rotate(v);
+  FreeBodyState x1;
+  x1.q = x0.q * UnitQuaternion::exp(h * w);
+  x1.r = x0.r + h * r_dot;
+  x1.V = Velocity(Vec6<double>(x0.V.vector() + h * V_dot));
+  return x1;
 }
 
 }  // namespace soa::ex02
