@@ -141,12 +141,12 @@ Naming vector_naming(const std::string& sym) {
 
 // Three checks of a state against a reference, each with its catalogue taken from states.
 struct StateChecks {
-  // Destroyed (and reported) in the reverse order: the attitude first.
-  Check V, r, q;
+  // Reported in the order declared: the attitude first.
+  Check q, r, V;
   StateChecks(const std::string& what, double tol)
-      : V("the velocity V of " + what, tol),
+      : q("the attitude q of " + what, tol),
         r("the position r of " + what, tol),
-        q("the attitude q of " + what, tol) {}
+        V("the velocity V of " + what, tol) {}
   void add(int i, const soa::FreeBodyState& got, const soa::FreeBodyState& ref, double unit,
            unsigned tags, const std::function<std::string()>& inputs,
            const std::function<std::vector<std::pair<Mistake, soa::FreeBodyState>>()>& variants) {

@@ -15,7 +15,7 @@ soa_plant(4.2 unrotated-l
 soa_plant(4.2 coriolis-doubled
   FIND [=[w_parent.cross(be * a)]=]
   WRONG [=[2.0 * w_parent.cross(be * a)]=] TYPE [=[Vec3<double>]=]
-  EXPECT [=[symptom: every case unless the chain moves \(beta != 0\) passes]=])
+  EXPECT [=[symptom: every case unless it moves \(the velocities are not zero\) passes]=])
 soa_plant(4.3 transpose
   FIND [=[phi.transpose() * op.H.transpose()]=]
   WRONG [=[phi * op.H.transpose()]=] TYPE [=[MatX<double>]=]

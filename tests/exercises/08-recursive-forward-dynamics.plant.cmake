@@ -9,7 +9,7 @@ soa_plant(8.1 coriolis-doubled
   FIND [=[art.P[j] * ws.a[j].vector() + gyroscopic_force(B.M, ws.V[j]).vector()]=]
   WRONG [=[2.0 * art.P[j] * ws.a[j].vector() + gyroscopic_force(B.M, ws.V[j]).vector()]=]
   TYPE [=[Vec6]=]
-  EXPECT [=[symptom: every case unless the chain moves \(beta != 0\) passes]=])
+  EXPECT [=[symptom: every case unless it moves \(the velocities are not zero\) passes]=])
 soa_plant(8.2 transpose
   FIND [=[ws.phi[j].transpose_apply(next)]=]
   WRONG [=[Acceleration(ws.phi[j].matrix() * next.vector())]=]

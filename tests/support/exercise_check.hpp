@@ -70,7 +70,7 @@ struct TagMeaning {
 
 inline const std::vector<TagMeaning>& tag_meanings() {
   static const std::vector<TagMeaning> t = {
-      {kMoving, "the chain moves (beta != 0)",
+      {kMoving, "it moves (the velocities are not zero)",
        "a velocity-dependent term (Coriolis a(k), gyroscopic b(k) or a velocity itself) is "
        "wrong or missing"},
       {kAccelerating, "the accelerations are not zero", "a term in beta_dot is wrong or missing"},
@@ -388,9 +388,8 @@ class Check {
       for (Mistake& mk : mistakes()) {
         Tally& t = tally(mk);
         if (mk.value.rows() != e.rows() || mk.value.cols() != e.cols()) continue;
-        // A variant equal to the right answer in this case tells nothing.
-        const double sep = (mk.value - e).norm() / std::max(scale, 1e-300);
-        if (sep <= 1e3 * tol_) continue;
+        // In a failing case every variant is evidence: one equal to the right answer here
+        // is not what the student computed.
         ++t.informative;
         if ((g - mk.value).norm() / std::max(scale, 1e-300) <= 1e3 * tol_) ++t.matched;
       }
