@@ -21,7 +21,7 @@ if [ -z "$file" ] || ! grep -q "^## $ex " "$file"; then
   exit 0
 fi
 # The exercise's section: from its heading to the next.
-section=$(awk -v ex="$ex" '/^## /{on = ($2 == ex)} on' "$file")
+section=$(awk -v ex="$ex" '/^## /{on = ($2 "" == ex "")} on' "$file")
 total=$(printf '%s\n' "$section" | grep -c '^[0-9][0-9]*\. ' || true)
 mkdir -p "$state"
 seen=$(cat "$state/$ex" 2>/dev/null || echo 0)

@@ -48,7 +48,7 @@ for dir in exercises/[0-9][0-9]-*/; do
           say "$dir: exercise $ex (level 3) has no hints in hints.md"
           continue
         fi
-        section=$(awk -v ex="$ex" '/^## /{on = ($2 == ex)} on' "$hints")
+        section=$(awk -v ex="$ex" '/^## /{on = ($2 "" == ex "")} on' "$hints")
         echo "$section" | grep -q '^Taught in: ' || say "$hints: $ex does not say where it is taught"
         n=$(echo "$section" | grep -c '^[0-9][0-9]*\. ' || true)
         [ "$n" -ge 3 ] || say "$hints: $ex has $n hints, fewer than 3"
