@@ -51,4 +51,14 @@ VecX innovations_coordinates(const Model& m, const State& x) {
   throw exercise::NotDone("7.9 innovations_coordinates");
 }
 
+MatX minv_zero_pattern(const std::vector<HingeType>& hinges) {
+  (void)hinges;
+  throw exercise::NotDone("7.10 minv_zero_pattern");
+}
+
+MatX sweep_operator(const Model& m, const State& x) {
+  (void)m, (void)x;
+  throw exercise::NotDone("7.11 sweep_operator");
+}
+
 }  // namespace soa::ex07
