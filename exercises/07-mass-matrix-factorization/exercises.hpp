@@ -4,8 +4,8 @@
 /// \f$O(N)\f$, solving \f$\mathcal M y = b\f$ without forming \f$\mathcal M\f$, the operator
 /// \f$\Omega\f$ from \f$\Upsilon\f$, \f$\mathcal M^{-1}\f$ from \f$\Upsilon\f$, the
 /// operational-space inverse inertia and the innovations coordinates; then two to work out
-/// (level 3): which blocks of \f$\mathcal M^{-1}\f$ are zero, and the dense operator of the
-/// tip-to-base sweep of 7.4.
+/// (level 3): which blocks of \f$\mathcal M^{-1}\f$ are zero, the dense operator of the
+/// tip-to-base sweep of 7.4, and a bug to find in the way back from innovations coordinates.
 ///
 /// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
 /// joins body k+1 to body k; \f$\theta\f$ and \f$\beta\f$ are stacked tip first (body k's
@@ -193,5 +193,20 @@ MatX minv_zero_pattern(const std::vector<HingeType>& hinges);
 /// operators of lesson 7 (which one? your block formula tells), and checks that \f$A\f$
 /// inverts the innovations factor: \f$A\,[I + H\phi K] = I\f$.
 MatX sweep_operator(const Model& m, const State& x);
+
+/// **Exercise 7.12: find the bug: hinge velocities from innovations coordinates.**
+/// *Level 3 of 3, about 25 min; uses 7.9.*
+/// The innovations coordinates of exercise 7.9, \f$\eta = [I + H\phi K]^*\beta\f$, go back
+/// to the hinge velocities by the inverse factor of lesson 7, section 4:
+/// \f$\beta = [I - H\psi K]^*\eta\f$. The stub of this exercise (exercises.cpp, below its
+/// `throw` line) computes it in \f$O(N)\f$ in one sweep base to tip, through the body
+/// velocities \f$V(k)\f$ of lesson 3, but has one bug. Find it by reading the code against
+/// lesson 3 (the velocity recursion) and lesson 7, section 9 (\f$\eta(k) = G^*(k)V(k)\f$), fix
+/// it, delete the `throw` line, and say in a comment what was wrong. Return \f$\beta\f$
+/// (size nv, tip first) for the chain \p m at the configuration `x.theta` (`x.beta` is not
+/// used) from \p eta. The test draws \f$\beta\f$, gives you \f$\eta = [I + H\phi K]^*\beta\f$
+/// and compares your result with \f$\beta\f$. Do not call soa::InnovationsOperatorsT or
+/// soa::OperatorsT.
+VecX beta_from_eta(const Model& m, const State& x, const VecX& eta);
 
 }  // namespace soa::ex07

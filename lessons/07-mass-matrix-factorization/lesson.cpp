@@ -779,7 +779,9 @@ int main(int argc, char** argv) {
   /// one product per body after the velocity recursion (innovations_coordinates()). Checked
   /// at the velocity \f$\beta_i = \cos(1 + i)\f$ of test_velocity().
   ///
-  /// *Now do exercise 7.9* (`soa::ex07::innovations_coordinates`): \f$\eta\f$ in \f$O(N)\f$.
+  /// *Now do exercise 7.9* (`soa::ex07::innovations_coordinates`): \f$\eta\f$ in \f$O(N)\f$,
+  /// then *exercise 7.12* (`soa::ex07::beta_from_eta`): find the bug in the way back,
+  /// \f$\beta = [I - H\psi K]^*\eta\f$, base to tip.
   checks.section("9. innovations coordinates");
   check_all("1/2 beta* M beta = 1/2 eta* D eta", &Residuals::eta_energy);
   check_all("eta(k) = G*(k) V(k) (O(N)) = [I + H phi K]* beta", &Residuals::eta_rec);

@@ -267,4 +267,24 @@ MatX sweep_operator(const Model& m, const State& x) {
   return A;
 }
 
+// Exercise 7.12: the bug was V(k) = phi*(k+1,k) V(k+1) + H*(k) eta(k); the velocity
+// recursion of lesson 3 adds the hinge velocity, H*(k) beta(k).
+VecX beta_from_eta(const Model& m, const State& x, const VecX& eta) {
+  const Riccati r(m, x);
+  VecX beta(m.nv());
+  Velocity V = Velocity::Zero();  // V(k+1), zero beyond the base
+  for (int k = m.n(); k >= 1; --k) {
+    const Body& B = m.body(k);
+    const int o = B.v_offset, nk = B.hinge.nv();
+    const MatX Hs = H_star(m, x, k);
+    const Velocity V_plus =
+        k < m.n() ? r.ws.phi[std::size_t(k - 1)].transpose_apply(V) : Velocity::Zero();
+    const VecX eta_k = eta.segment(o, nk);
+    const VecX beta_k = eta_k - MatX(r.art.G[std::size_t(k - 1)]).transpose() * V_plus.vector();
+    beta.segment(o, nk) = beta_k;
+    V = Velocity(Vec6<double>(V_plus.vector() + Hs * beta_k));
+  }
+  return beta;
+}
+
 }  // namespace soa::ex07

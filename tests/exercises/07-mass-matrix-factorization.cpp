@@ -1076,3 +1076,65 @@ TEST(Exercise7_11_SweepOperator, IsTheInverseFactor) {
         soa::test::dof_blocks(c.m, "A L"));
   }
 }
+
+// --- 7.12 -----------------------------------------------------------------------------------------
+
+// beta from eta by the base-to-tip sweep of 7.12 with a classic mistake (the bug of the
+// stub among them).
+enum class BetaV { BugLeft, NoG, Sign, PhiNotTransposed };
+VecX beta_variant(const Parts& p, const VecX& eta, BetaV v) {
+  VecX beta(p.nv);
+  soa::Vec6<double> V = soa::Vec6<double>::Zero();
+  for (int k = p.n; k >= 1; --k) {
+    const auto j = std::size_t(k - 1);
+    soa::Vec6<double> V_plus = soa::Vec6<double>::Zero();
+    if (k < p.n)
+      V_plus = v == BetaV::PhiNotTransposed ? soa::Vec6<double>(p.phi[j] * V)
+                                            : soa::Vec6<double>(p.phi[j].transpose() * V);
+    const VecX eta_k = eta.segment(p.off[j], p.nk[j]);
+    const VecX GV = p.G[j].transpose() * V_plus;
+    const VecX beta_k = v == BetaV::NoG    ? eta_k
+                        : v == BetaV::Sign ? VecX(eta_k + GV)
+                                           : VecX(eta_k - GV);
+    beta.segment(p.off[j], p.nk[j]) = beta_k;
+    V = V_plus + p.Hs[j] * (v == BetaV::BugLeft ? eta_k : beta_k);
+  }
+  return beta;
+}
+
+TEST(Exercise7_12_BetaFromEta, InvertsTheInnovationsCoordinates) {
+  Random<double> rnd(712);
+  Check check("beta, recovered from eta = [I + H phi K]* beta", 4.0);
+  for (int i = 0; i < kCases; ++i) {
+    const Case c(rnd, i);
+    const VecX beta = soa::test::random_vector(rnd, c.m.nv());
+    const VecX eta = c.io.factor().transpose() * beta;
+    const VecX got = soa::ex07::beta_from_eta(c.m, c.x, eta);
+    const MatX Li = c.io.factor_inverse();
+    const Parts p(c.m, c.x);
+    auto mistakes = [&] {
+      auto v = [&](BetaV e) { return beta_variant(p, eta, e); };
+      return Mistakes{
+          {"the bug",
+           "the bug is still there: your V(k) adds H*(k) eta(k), but the velocity recursion of "
+           "lesson 3 adds the hinge velocity, H*(k) beta(k)",
+           v(BetaV::BugLeft)},
+          {"dropped term", "your beta is eta: beta(k) = eta(k) - G*(k) phi*(k+1,k) V(k+1)",
+           v(BetaV::NoG)},
+          {"sign", "your beta(k) adds G*(k) phi*(k+1,k) V(k+1): it is subtracted", v(BetaV::Sign)},
+          {"transpose",
+           "you move V(k+1) to O_k with phi(k+1,k): velocities go base to tip with phi*(k+1,k) "
+           "(.transpose_apply)",
+           v(BetaV::PhiNotTransposed)},
+          {"transpose", "your beta is [I - H psi K] eta: it is [I - H psi K]* eta", VecX(Li * eta)},
+      };
+    };
+    check.add(
+        i, got, beta, c.unit() * at_least_1(Li.norm() * eta.norm()), c.tags,
+        [&] {
+          return c.code(soa::test::code("eta", eta) +
+                        "soa::VecX<double> beta = soa::ex07::beta_from_eta(m, x, eta);");
+        },
+        mistakes, soa::test::per_dof(c.m, "beta"));
+  }
+}

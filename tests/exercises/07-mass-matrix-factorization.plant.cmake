@@ -57,3 +57,7 @@ soa_plant(7.11 dropped-term
   FIND [=[r.art.tau_bar(m, x.theta, k) * z]=]
   WRONG [=[z]=] TYPE [=[MatX]=]
   EXPECT [=[likely mistake \(dropped term\): your A\(k,i\) is -H\(k\) phi\(k,i\) G\(i\)]=])
+soa_plant(7.12 bug-left
+  FIND [=[Hs * beta_k]=]
+  WRONG [=[Hs * eta_k]=] TYPE [=[VecX]=]
+  EXPECT [=[likely mistake \(the bug\): the bug is still there: your V\(k\) adds H\*\(k\) eta\(k\)]=])
