@@ -411,6 +411,9 @@ int main(int argc, char** argv) {
   /// soa::articulated_inertias()). The chains: the double pendulum and the 7-joint arm of
   /// lesson 3 in the states their scene files give, and 200 random chains of 1 to 8 bodies
   /// whose hinges run through every type of lesson 3, in random states.
+  ///
+  /// *Now do exercise 7.1* (`soa::ex07::k_and_psi`): \f$K\f$ and \f$\psi\f$ as dense matrices,
+  /// built block by block from \f$\phi(k+1,k)\f$, \f$G(k)\f$ and \f$\bar\tau(k)\f$.
   checks.section("1. the chains");
   struct Named {
     std::string name;
@@ -495,6 +498,9 @@ int main(int argc, char** argv) {
   /// *innovations* factorization after the Kalman filter it mirrors: the Riccati recursion
   /// is the filter's covariance recursion, \f$D\f$ the covariance of the innovations and
   /// \f$G\f$ the Kalman gain (Jain 2011, chapter 7).
+  ///
+  /// *Now do exercise 7.5* (`soa::ex07::log_det_mass_matrix`): \f$\log\det\mathcal M\f$ from
+  /// the pivots \f$D(k)\f$ alone.
   checks.section("3. innovations factorization");
   check_all("M = [I + H phi K] D [I + H phi K]*", &Residuals::factorization);
   check_all("[I + H phi K] block unit lower triangular", &Residuals::triangular);
@@ -517,6 +523,9 @@ int main(int argc, char** argv) {
   /// Only \f$D^{-1}\f$ is inverted: n small blocks \f$D(k)\f$ of size \f$n_k \le 6\f$. The
   /// comparison with Eigen's dense inverse of \f$\mathcal M\f$ (from lesson 5) is scaled by
   /// cond(M): the dense inverse itself is only that accurate.
+  ///
+  /// *Now do exercise 7.2* (`soa::ex07::innovations_factor`): the factor, its inverse in
+  /// closed form and \f$D\f$, checked against \f$\mathcal M = LDL^*\f$.
   checks.section("4. inverse of the factor and of M");
   check_all("[I + H phi K]^-1 = I - H psi K (both products = I)", &Residuals::factor_inverse);
   check_all("[I - H psi K]* D^-1 [I - H psi K] = inv(M) (/ cond(M))", &Residuals::inverse);
@@ -542,6 +551,10 @@ int main(int argc, char** argv) {
   /// structure: in the tip-to-base pass only the columns of the hinges outboard of k are
   /// non-zero, in the base-to-tip pass only rows k..1 are needed (the rest by symmetry).
   /// From the command line: `soa mass-matrix --inverse SCENE.json`.
+  ///
+  /// *Now do exercise 7.4* (`soa::ex07::solve`): \f$\mathcal M y = b\f$ by these two sweeps,
+  /// then *exercise 7.11* (`soa::ex07::sweep_operator`): the dense operator of the first
+  /// sweep, its blocks derived from the recursion.
   check_all("mass_matrix_inverse (O(N^2)) = [I - H psi K]* D^-1 [I - H psi K]", &Residuals::on2);
   check_all("mass_matrix_inverse (O(N^2)) = inv(M) (/ cond(M))", &Residuals::on2_dense);
   for (std::size_t i = 0; i < scenes.size(); ++i)
@@ -662,6 +675,12 @@ int main(int argc, char** argv) {
   /// so in \f$\mathcal M^{-1} = D^{-1} - D^{-1}H\psi K - K^*\psi^*H^*D^{-1} + K^*\Omega K\f$ only
   /// the first and last terms reach the diagonal,
   /// \f[ \mathcal M^{-1}(k,k) = D^{-1}(k) + G^*(k)\,\Upsilon^+(k)\,G(k) . \f]
+  ///
+  /// *Now do exercises 7.3* (`soa::ex07::minv_diagonal`: the diagonal blocks of
+  /// \f$\mathcal M^{-1}\f$ in \f$O(N)\f$), *7.6* (`soa::ex07::omega_from_upsilon`:
+  /// \f$\Omega\f$ block by block from \f$\Upsilon\f$) and *7.10*
+  /// (`soa::ex07::minv_zero_pattern`: predict, from the hinge types alone, which blocks of
+  /// \f$\mathcal M^{-1}\f$ are zero).
   checks.section("6. Omega and Upsilon");
   check_all("phi* H* inv(M) H phi = psi* H* D^-1 H psi (/ cond(M))", &Residuals::omega);
   check_all("Omega = Upsilon + psi~* Upsilon + Upsilon psi~", &Residuals::omega_split);
@@ -705,6 +724,8 @@ int main(int argc, char** argv) {
   /// against soa::mass_matrix_inverse() (MassMatrixInverseUpsilon and MassMatrixInverse in
   /// `build/bench/forward_bench.json`). Its accuracy on the link chains is the fourth curve
   /// of section 5.
+  ///
+  /// *Now do exercise 7.7* (`soa::ex07::minv_from_upsilon`): this algorithm.
   checks.section("7. M^-1 in O(N^2) from Upsilon");
   check_all("mass_matrix_inverse_upsilon = [I - H psi K]* D^-1 [I - H psi K]", &Residuals::on2u);
   check_all("mass_matrix_inverse_upsilon = mass_matrix_inverse (/ n cond(M))",
@@ -726,6 +747,9 @@ int main(int argc, char** argv) {
   /// soa::operational_space_inverse_inertia(); from the command line,
   /// `soa mass-matrix --operational BODY SCENE.json`. Checked on every body of every chain
   /// with the frame of tool_frame(), against \f$J\f$ of soa::jacobian() and the dense inverse.
+  ///
+  /// *Now do exercise 7.8* (`soa::ex07::operational_inverse_inertia`): the \f$\Upsilon\f$
+  /// recursion down to body k, then the move to F.
   checks.section("8. operational space");
   check_all("phi*(O_k,F) Upsilon(k) phi(O_k,F) = J inv(M) J*, every body (/ cond(M))",
             &Residuals::opspace);
@@ -754,6 +778,10 @@ int main(int argc, char** argv) {
   /// \f[ \eta(k) = G^*(k)\,V(k) , \f]
   /// one product per body after the velocity recursion (innovations_coordinates()). Checked
   /// at the velocity \f$\beta_i = \cos(1 + i)\f$ of test_velocity().
+  ///
+  /// *Now do exercise 7.9* (`soa::ex07::innovations_coordinates`): \f$\eta\f$ in \f$O(N)\f$,
+  /// then *exercise 7.12* (`soa::ex07::beta_from_eta`): find the bug in the way back,
+  /// \f$\beta = [I - H\psi K]^*\eta\f$, base to tip.
   checks.section("9. innovations coordinates");
   check_all("1/2 beta* M beta = 1/2 eta* D eta", &Residuals::eta_energy);
   check_all("eta(k) = G*(k) V(k) (O(N)) = [I + H phi K]* beta", &Residuals::eta_rec);

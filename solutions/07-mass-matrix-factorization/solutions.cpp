@@ -24,37 +24,45 @@ MatX H_star(const Model& m, const State& x, int k) {
 
 }  // namespace
 
-// Lesson 7, section 1: K = E_phi G, psi = (I - E_phi tau_bar)^-1.
+// Lesson 7, section 1: K = E_phi G (phi(k+1,k) G(k) at block (k+1, k)), psi = (I - E_psi)^-1
+// with E_psi = E_phi tau_bar (phi(k+1,k) tau_bar(k) at block (k+1, k)).
 KAndPsi k_and_psi(const Model& m, const State& x) {
-  const Operators op = Operators::build(m, x);
   const Riccati r(m, x);
   const int n = m.n(), N = 6 * n;
-  MatX G = MatX::Zero(N, m.nv()), tau_bar = MatX::Zero(N, N);
-  for (int k = 1; k <= n; ++k) {
-    const Body& B = m.body(k);
-    G.block(6 * (k - 1), B.v_offset, 6, B.hinge.nv()) = r.art.G[std::size_t(k - 1)];
-    tau_bar.block(6 * (k - 1), 6 * (k - 1), 6, 6) = r.art.tau_bar(m, x.theta, k);
-  }
   KAndPsi out;
-  out.K = op.E_phi * G;
-  out.psi = (MatX::Identity(N, N) - op.E_phi * tau_bar).inverse();
+  out.K = MatX::Zero(N, m.nv());
+  MatX E_psi = MatX::Zero(N, N);
+  for (int k = 1; k < n; ++k) {
+    const Body& B = m.body(k);
+    const std::size_t j = std::size_t(k - 1);
+    const Mat6<double> phi = r.ws.phi[j].matrix();  // phi(k+1,k)
+    out.K.block(6 * k, B.v_offset, 6, B.hinge.nv()) = phi * r.art.G[j];
+    E_psi.block(6 * k, 6 * (k - 1), 6, 6) = phi * r.art.tau_bar(m, x.theta, k);
+  }
+  const MatX I = MatX::Identity(N, N);
+  out.psi = (I - E_psi).triangularView<Eigen::UnitLower>().solve(I);
   return out;
 }
 
-// Lesson 7, sections 3-4: L = I + H phi K, L^-1 = I - H psi K, D.
+// Lesson 7, sections 3-4: L = I + H phi K, L^-1 = I - H psi K, D (K and psi as in 7.1).
 InnovationsFactor innovations_factor(const Model& m, const State& x) {
   const Operators op = Operators::build(m, x);
-  const KAndPsi kp = k_and_psi(m, x);
   const Riccati r(m, x);
-  const MatX I = MatX::Identity(m.nv(), m.nv());
+  const int n = m.n(), N = 6 * n, nv = m.nv();
+  MatX G = MatX::Zero(N, nv), tau_bar = MatX::Zero(N, N);
   InnovationsFactor f;
-  f.L = I + op.H * op.phi * kp.K;
-  f.L_inv = I - op.H * kp.psi * kp.K;
-  f.D = MatX::Zero(m.nv(), m.nv());
-  for (int k = 1; k <= m.n(); ++k) {
+  f.D = MatX::Zero(nv, nv);
+  for (int k = 1; k <= n; ++k) {
     const Body& B = m.body(k);
-    f.D.block(B.v_offset, B.v_offset, B.hinge.nv(), B.hinge.nv()) = r.art.D[std::size_t(k - 1)];
+    const int o = B.v_offset, nk = B.hinge.nv();
+    G.block(6 * (k - 1), o, 6, nk) = r.art.G[std::size_t(k - 1)];
+    tau_bar.block(6 * (k - 1), 6 * (k - 1), 6, 6) = r.art.tau_bar(m, x.theta, k);
+    f.D.block(o, o, nk, nk) = r.art.D[std::size_t(k - 1)];
   }
+  const MatX K = op.E_phi * G, IN = MatX::Identity(N, N), I = MatX::Identity(nv, nv);
+  const MatX psi = (IN - op.E_phi * tau_bar).triangularView<Eigen::UnitLower>().solve(IN);
+  f.L = I + op.H * op.phi * K;
+  f.L_inv = I - op.H * psi * K;
   return f;
 }
 
@@ -218,6 +226,65 @@ VecX innovations_coordinates(const Model& m, const State& x) {
         r.art.G[std::size_t(k - 1)].transpose() * r.ws.V[std::size_t(k - 1)].vector();
   }
   return eta;
+}
+
+// Exercise 7.10: a free hinge f has an invertible 6 x 6 H(f), so G(f) = H(f)^-1 and
+// tau_bar(f) = I - G(f) H(f) = 0: psi(k,j) = 0 whenever hinge f lies strictly between (j < f <
+// k), and every term of M^-1(i,j) = sum_k L^-1(k,i)* D^-1(k) L^-1(k,j) over k >= max(i,j)
+// carries such a psi. Everywhere else the blocks are generically non-zero. For the motion:
+// a free hinge transmits no force, so a hinge force applied on one side of it (an internal
+// force of the chain on that side, which floats freely) gives the hinges on the other side
+// no acceleration from rest.
+MatX minv_zero_pattern(const std::vector<HingeType>& hinges) {
+  const int n = int(hinges.size());
+  MatX pattern = MatX::Ones(n, n);
+  for (int f = 1; f <= n; ++f) {
+    if (hinges[std::size_t(f - 1)] != HingeType::Free) continue;
+    for (int i = 1; i < f; ++i)  // outboard of hinge f
+      for (int k = f + 1; k <= n; ++k) pattern(i - 1, k - 1) = pattern(k - 1, i - 1) = 0;
+  }
+  return pattern;
+}
+
+// Exercise 7.11: a force at hinge i alone gives eps(i) = b(i), z+(i) = G(i) b(i), z(i+1) =
+// phi(i+1,i) G(i) b(i); each body k between passes z+(k) = z(k) - G(k) H(k) z(k) = tau_bar(k)
+// z(k) on, and eps(k) = -H(k) z(k). So A(k,i) = -H(k) phi(k,k-1) tau_bar(k-1) ... tau_bar(i+1)
+// phi(i+1,i) G(i) = -H(k) psi(k,i+1) phi(i+1,i) G(i): A = I - H psi K, the inverse of the
+// innovations factor.
+MatX sweep_operator(const Model& m, const State& x) {
+  const Riccati r(m, x);
+  MatX A = MatX::Identity(m.nv(), m.nv());
+  for (int i = 1; i < m.n(); ++i) {
+    const Body& Bi = m.body(i);
+    MatX z = r.ws.phi[std::size_t(i - 1)].matrix() * MatX(r.art.G[std::size_t(i - 1)]);  // z(i+1)
+    for (int k = i + 1; k <= m.n(); ++k) {
+      const Body& Bk = m.body(k);
+      A.block(Bk.v_offset, Bi.v_offset, Bk.hinge.nv(), Bi.hinge.nv()) =
+          -H_star(m, x, k).transpose() * z;
+      if (k < m.n()) z = r.ws.phi[std::size_t(k - 1)].matrix() * (r.art.tau_bar(m, x.theta, k) * z);
+    }
+  }
+  return A;
+}
+
+// Exercise 7.12: the bug was V(k) = phi*(k+1,k) V(k+1) + H*(k) eta(k); the velocity
+// recursion of lesson 3 adds the hinge velocity, H*(k) beta(k).
+VecX beta_from_eta(const Model& m, const State& x, const VecX& eta) {
+  const Riccati r(m, x);
+  VecX beta(m.nv());
+  Velocity V = Velocity::Zero();  // V(k+1), zero beyond the base
+  for (int k = m.n(); k >= 1; --k) {
+    const Body& B = m.body(k);
+    const int o = B.v_offset, nk = B.hinge.nv();
+    const MatX Hs = H_star(m, x, k);
+    const Velocity V_plus =
+        k < m.n() ? r.ws.phi[std::size_t(k - 1)].transpose_apply(V) : Velocity::Zero();
+    const VecX eta_k = eta.segment(o, nk);
+    const VecX beta_k = eta_k - MatX(r.art.G[std::size_t(k - 1)]).transpose() * V_plus.vector();
+    beta.segment(o, nk) = beta_k;
+    V = Velocity(Vec6<double>(V_plus.vector() + Hs * beta_k));
+  }
+  return beta;
 }
 
 }  // namespace soa::ex07
