@@ -193,11 +193,10 @@ MatX psi_variant(const Parts& p, PsiV v) {
 
 TEST(Exercise7_1_KAndPsi, MatchesLibraryAndIdentity) {
   Random<double> rnd(701);
-  // Declared in the reverse order of their reports (destructors run last first): the
-  // table shows the first failure of an exercise.
-  Check id_check("phi^-1 - psi^-1 = -K H with your K and psi", 4.0);
-  Check psi_check("psi = (I - E_phi tau_bar)^-1", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check K_check("K = E_phi G, the 6n x nv operator", 4.0);
+  Check psi_check("psi = (I - E_phi tau_bar)^-1", 4.0);
+  Check id_check("phi^-1 - psi^-1 = -K H with your K and psi", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const soa::ex07::KAndPsi kp = soa::ex07::k_and_psi(c.m, c.x);
@@ -270,13 +269,13 @@ MatX upper_and_diagonal(const soa::Model& m, const MatX& L) {
 
 TEST(Exercise7_2_InnovationsFactor, FactorsTheMassMatrix) {
   Random<double> rnd(702);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check tri_check("L block unit lower triangular (its diagonal blocks I, zero above)", 4.0);
-  Check inv_check("L L_inv = I with your L and L_inv", 4.0);
-  Check ldl_check("L D L* = M with your L and D", 4.0);
-  Check D_check("D = diag(D(k)), the articulated hinge inertias", 4.0);
-  Check Li_check("L_inv = I - H psi K, its inverse", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check L_check("L = I + H phi K, the innovations factor", 4.0);
+  Check Li_check("L_inv = I - H psi K, its inverse", 4.0);
+  Check D_check("D = diag(D(k)), the articulated hinge inertias", 4.0);
+  Check ldl_check("L D L* = M with your L and D", 4.0);
+  Check inv_check("L L_inv = I with your L and L_inv", 4.0);
+  Check tri_check("L block unit lower triangular (its diagonal blocks I, zero above)", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const soa::ex07::InnovationsFactor f = soa::ex07::innovations_factor(c.m, c.x);
@@ -484,9 +483,9 @@ VecX solve_variant(const Parts& p, const VecX& b, SolveV v) {
 
 TEST(Exercise7_4_Solve, SolvesMassMatrixSystem) {
   Random<double> rnd(704);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check res("M y, which must be b", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check ref("y = M^-1 b", 4.0);
+  Check res("M y, which must be b", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const VecX b = soa::test::random_vector(rnd, c.m.nv());
@@ -605,9 +604,9 @@ MatX omega_variant(const Parts& p, OmegaV v) {
 
 TEST(Exercise7_6_OmegaFromUpsilon, MatchesPhiHMinvHPhiAndLibrary) {
   Random<double> rnd(706);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check dense("Omega against phi* H* M^-1 H phi (dense)", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check lib("Omega against the library's psi* H* D^-1 H psi", 4.0);
+  Check dense("Omega against phi* H* M^-1 H phi (dense)", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const MatX Omega = soa::ex07::omega_from_upsilon(c.m, c.x);
@@ -703,9 +702,9 @@ MatX minv_upsilon_variant(const Parts& p, MinvV v) {
 
 TEST(Exercise7_7_MinvFromUpsilon, MatchesLibraryAndDenseInverse) {
   Random<double> rnd(707);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check dense("M^-1 against the dense inverse of M", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check lib("M^-1 against the library's mass_matrix_inverse_upsilon", 4.0);
+  Check dense("M^-1 against the dense inverse of M", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const MatX Minv = soa::ex07::minv_from_upsilon(c.m, c.x);
@@ -840,9 +839,9 @@ TEST(Exercise7_8_OperationalInverseInertia, MatchesDenseJMinvJStar) {
 
 TEST(Exercise7_9_InnovationsCoordinates, DecoupleKineticEnergy) {
   Random<double> rnd(709);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check energy("1/2 eta* D eta, which must be the kinetic energy 1/2 beta* M beta", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check lib("eta = [I + H phi K]* beta", 4.0);
+  Check energy("1/2 eta* D eta, which must be the kinetic energy 1/2 beta* M beta", 4.0);
   for (int i = 0; i < kCases; ++i) {
     Case c(rnd, i);
     c.x.beta = soa::test::random_vector(rnd, c.m.nv());
@@ -1021,9 +1020,9 @@ MatX sweep_variant(const Parts& p, SweepV v) {
 
 TEST(Exercise7_11_SweepOperator, IsTheInverseFactor) {
   Random<double> rnd(711);
-  // In the reverse order of their reports (the table shows the first failure).
-  Check inv("A [I + H phi K] = I with your A", 4.0);
+  // Declared in the order of their reports (the table shows the first failure).
   Check lib("A, the dense operator of the sweep, against the library's operator", 4.0);
+  Check inv("A [I + H phi K] = I with your A", 4.0);
   for (int i = 0; i < kCases; ++i) {
     const Case c(rnd, i);
     const MatX A = soa::ex07::sweep_operator(c.m, c.x);
