@@ -39,7 +39,7 @@ namespace {
 struct Row {
   bool failed = false;
   bool not_done = false;
-  std::string first_failure;
+  std::string first_failure;  ///< the failures' messages, each ending in a newline
 };
 
 // "4.2" -> "level 2, 30 min, uses 4.1", read from the statements in exercises.hpp.
@@ -77,12 +77,14 @@ class Table : public testing::EmptyTestEventListener {
     if (msg.find("not done: exercise") != std::string::npos) row.not_done = true;
     // ADD_FAILURE() << text gives "Failed\ntext": the text is what names the mistake.
     if (msg.rfind("Failed\n", 0) == 0) msg.erase(0, 7);
-    // gtest's own messages ("Expected: ...") are shown by their first line; the exercise
-    // checker's (which start with the check's name) in full.
-    if (row.first_failure.empty())
-      row.first_failure = msg.rfind("Expected", 0) == 0 || msg.rfind("Value of", 0) == 0
-                              ? msg.substr(0, msg.find('\n'))
-                              : msg;
+    // Every failed check of the exercise, in the order reported: gtest's own messages
+    // ("Expected: ...") by their first line, the exercise checker's (which start with the
+    // check's name) in full.
+    const std::string text = msg.rfind("Expected", 0) == 0 || msg.rfind("Value of", 0) == 0
+                                 ? msg.substr(0, msg.find('\n'))
+                                 : msg;
+    if (row.first_failure.find(text) == std::string::npos)
+      row.first_failure += text.empty() || text.back() == '\n' ? text : text + "\n";
   }
   void OnTestStart(const testing::TestInfo& info) override {
     current_ = info.test_suite_name();
@@ -113,7 +115,7 @@ class Table : public testing::EmptyTestEventListener {
         std::istringstream text(r.first_failure);
         std::string line;
         int lines = 0;
-        while (std::getline(text, line) && lines++ < 60) std::printf("      %s\n", line.c_str());
+        while (std::getline(text, line) && lines++ < 80) std::printf("      %s\n", line.c_str());
       }
     }
   }
@@ -276,7 +278,8 @@ void run_isolated(Table& table) {
       dup2(fileno(err), 2);
       for (int sig : {SIGABRT, SIGSEGV, SIGFPE, SIGBUS, SIGILL}) std::signal(sig, on_fatal_signal);
       GTEST_FLAG_SET(filter, suite + ".*");
-      (void)RUN_ALL_TESTS();
+      const int failed = RUN_ALL_TESTS();  // the row says it
+      (void)failed;
       const std::string label = Table::label(suite);
       const std::string calls = forbidden_calls(label.substr(0, label.find(' ')));
       if (!calls.empty()) table.forbid(suite, calls);

@@ -1,6 +1,7 @@
 // A probe "student" for the test of the forbidden-call watch (exercises.watch-probe): its
 // 4.2 gives the right answer by calling soa::inverse_dynamics, which 4.2 forbids, and its 4.4
-// calls soa::inverse_dynamics too, which 4.4 allows. The watch must fail 4.2 alone.
+// calls soa::inverse_dynamics too, which 4.4 allows. The watch must fail 4.2 alone. (Every
+// function of exercises/04-*/exercises.hpp needs a definition here.)
 #include "exercises.hpp"
 #include "not_done.hpp"
 
@@ -47,6 +48,15 @@ VecX<double> gravity_torques(const Model&, const VecX<double>&) {
 
 MatX<double> coriolis_matrix_operators(const EnergyStructure&) {
   throw exercise::NotDone("4.7");
+}
+
+Acceleration helical_coriolis(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&,
+                              double, double) {
+  throw exercise::NotDone("4.8");
+}
+
+VecX<double> gravity_torque_signs(const Model&, const VecX<double>&) {
+  throw exercise::NotDone("4.9");
 }
 
 }  // namespace soa::ex04
