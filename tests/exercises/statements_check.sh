@@ -9,7 +9,8 @@
 #   - the lesson's README table has a row for each exercise;
 #   - the lesson program and the lesson's page in the notes point to each exercise where its
 #     material is taught ("now do N.K");
-#   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh).
+#   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh);
+#   - no solution calls another exercise's function.
 #   statements_check.sh <source dir> <scratch dir>
 set -eu
 root=$1
@@ -63,6 +64,17 @@ for dir in exercises/[0-9][0-9]-*/; do
         ;;
     esac
   done
+  # A solution never calls another exercise's function (finished work would read "not done"
+  # while that one is a stub): each name of exercises.hpp appears once in the solution's code,
+  # as its definition (calls of the library's own soa::name are fine).
+  sol=$(ls solutions/$nn-*/solutions.cpp 2>/dev/null | head -1)
+  if [ -n "$sol" ]; then
+    for name in $(grep -oE '^[A-Za-z][A-Za-z0-9_:<>, ]*[ &*][a-z_][a-z_0-9]*\(' "$hpp" |
+                  grep -oE '[a-z_][a-z_0-9]*\($' | tr -d '(' | sort -u); do
+      uses=$(grep -v '^ *//' "$sol" | grep -oE "(^|[^.:a-zA-Z0-9_])$name\(" | wc -l)
+      [ "$uses" -le 1 ] || say "$sol: calls $name, an exercise's function: a solution must stand alone"
+    done
+  fi
   [ "$level3" -ge 2 ] || say "$hpp: lesson $lesson has $level3 exercises of level 3 (worked out), fewer than 2"
 done
 [ $fail = 0 ] && echo "every statement has its level, time and uses; hints, rows and pointers are in place"
