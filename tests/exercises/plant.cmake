@@ -7,8 +7,8 @@
 # semicolons) and the wrong expression that replaces it; TYPE names the type both convert
 # to when their types differ (Eigen expressions). The build compiles one copy of the
 # solutions with every mistake in place, each switched on at run time by SOA_PLANT=<id>
-# (tests/support/planted.hpp), and ctest runs the lesson's exercise tests on it once per
-# mistake: `exercises.NN.planted.<id>` passes when the report of <exercise> matches
+# (tests/support/planted.hpp) — the copy exNN-solutions links, off unless SOA_PLANT says —
+# and ctest runs the lesson's exercise tests on it once per mistake: `exercises.NN.planted.<id>` passes when the report of <exercise> matches
 # <regex> (the mistake named, e.g. "likely mistake \(transpose\)").
 
 function(soa_plant exercise id)
@@ -52,13 +52,15 @@ function(soa_planted_solutions nn dir list_file)
             ${PROJECT_SOURCE_DIR}/exercises ${PROJECT_SOURCE_DIR}/solutions/${dir})
   target_link_libraries(solutions_${nn}_planted PUBLIC soa)
   soa_check_target(solutions_${nn}_planted plain)
-  add_executable(ex${nn}-planted $<TARGET_OBJECTS:ex${nn}-tests>)
-  target_link_libraries(ex${nn}-planted PRIVATE solutions_${nn}_planted soa_exercise_main)
+  # The lesson's solution tests link this copy (with SOA_PLANT unset it is the solutions,
+  # as written): one compile of the solutions serves both, and solutions_NN itself is built
+  # only on request.
+  set_target_properties(solutions_${nn} PROPERTIES EXCLUDE_FROM_ALL TRUE)
   foreach(full IN LISTS _soa_plants)
     string(REGEX MATCH "^([0-9]+)\\.([0-9]+)/(.*)$" _ "${full}")
     set(filter "Exercise${CMAKE_MATCH_1}_${CMAKE_MATCH_2}_*")
     set(name exercises.${nn}.planted.${CMAKE_MATCH_1}.${CMAKE_MATCH_2}.${CMAKE_MATCH_3})
-    add_test(NAME ${name} COMMAND ex${nn}-planted --report --gtest_filter=${filter})
+    add_test(NAME ${name} COMMAND ex${nn}-solutions --report --gtest_filter=${filter})
     set_tests_properties(${name} PROPERTIES LABELS exercises ENVIRONMENT "SOA_PLANT=${full}"
                                             PASS_REGULAR_EXPRESSION "${_soa_expect_${full}}")
   endforeach()
