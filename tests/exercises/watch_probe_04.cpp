@@ -50,8 +50,8 @@ MatX<double> coriolis_matrix_operators(const EnergyStructure&) {
   throw exercise::NotDone("4.7");
 }
 
-Acceleration helical_coriolis(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&,
-                              double, double) {
+Acceleration helical_coriolis(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&, double,
+                              double) {
   throw exercise::NotDone("4.8");
 }
 
