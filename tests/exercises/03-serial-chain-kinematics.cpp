@@ -36,18 +36,11 @@ using Mat6 = soa::Mat6<double>;
 using Vec6 = soa::Vec6<double>;
 using VecX = soa::VecX<double>;
 using MatX = soa::MatX<double>;
+using soa::test::stack;
 using Matrix6X = soa::ex03::Matrix6X;
 
 constexpr double kEps = soa::eps<double>();
 const double kPi = std::acos(-1.0);
-
-// Per-body spatial vectors stacked tip first, as the operators lay them out.
-template <class SV>
-VecX stack(const std::vector<SV>& v) {
-  VecX s(6 * Eigen::Index(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = v[i].vector();
-  return s;
-}
 
 // A random case of lesson 3: a chain, its state (always moving), and the library's scatter
 // sweep (phi, poses, V, a) with the hinge velocities dV(k) = H*(k) beta(k).

@@ -29,18 +29,11 @@ using soa::test::Mistakes;
 using soa::test::Random;
 using VecX = soa::VecX<double>;
 using MatX = soa::MatX<double>;
+using soa::test::stack;
 using Vec3 = soa::Vec3<double>;
 using Mat3 = soa::Mat3<double>;
 
 constexpr double kEps = soa::eps<double>();
-
-// Per-body spatial vectors stacked tip first, as the operators lay them out.
-template <class SV>
-VecX stack(const std::vector<SV>& v) {
-  VecX s(6 * Eigen::Index(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = v[i].vector();
-  return s;
-}
 
 // The library's inverse dynamics: T, and the inter-body forces f in ws.
 VecX library_T(const soa::Model& m, const soa::State& x, const VecX& beta_dot,

@@ -38,6 +38,7 @@ using MatX = soa::MatX<double>;
 using Vec3 = soa::Vec3<double>;
 using Vec6 = soa::Vec6<double>;
 using VecX = soa::VecX<double>;
+using soa::test::stack;
 
 constexpr double kEps = soa::eps<double>();
 
@@ -127,18 +128,6 @@ double per_entry_scale(const VecX& got, const VecX& expected, const VecX& w) {
   return worst > 0 ? d.norm() / worst : w.minCoeff();
 }
 
-// Per-body vectors stacked tip first.
-VecX stack(const std::vector<Vec6>& v) {
-  VecX s(6 * Eigen::Index(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = v[i];
-  return s;
-}
-template <class SV>
-VecX stack_spatial(const std::vector<SV>& v) {
-  VecX s(6 * Eigen::Index(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = v[i].vector();
-  return s;
-}
 // P(k) (or any 6x6 per body) stacked tip first: 6n x 6.
 MatX stack6(const std::vector<Mat6>& v) {
   MatX s(6 * Eigen::Index(v.size()), 6);
@@ -480,7 +469,7 @@ TEST(Exercise6_5_ArticulatedForces, MatchNewtonEulerAndComposite) {
     soa::inverse_dynamics(m, c.x, bd, {}, ws, T_back);
     std::vector<soa::Force> y;
     const VecX f_comp = composite_forces(m, ws, y);
-    const VecX f_ne = stack_spatial(ws.f);
+    const VecX f_ne = stack(ws.f);
     const std::vector<Vec6> f = soa::ex06::articulated_forces(m, c.x, T);
     double scale = 1;
     for (int k = 1; k <= m.n(); ++k) {
@@ -636,13 +625,12 @@ TEST(Exercise6_6_CompositeBias, MatchesNewtonEulerAndLibrary) {
       };
     };
     if (int(y.size()) != m.n()) {
-      lib.add(i, VecX::Zero(6 * Eigen::Index(y.size())), stack_spatial(y_lib), scale, c.tags,
-              inputs);
+      lib.add(i, VecX::Zero(6 * Eigen::Index(y.size())), stack(y_lib), scale, c.tags, inputs);
       continue;
     }
-    lib.add(i, stack(y), stack_spatial(y_lib), scale, c.tags, inputs, mistakes,
+    lib.add(i, stack(y), stack(y_lib), scale, c.tags, inputs, mistakes,
             soa::test::per_body_spatial("y"));
-    ne.add(i, Ra + stack(y), stack_spatial(ws.f), scale, c.tags, inputs, {},
+    ne.add(i, Ra + stack(y), stack(ws.f), scale, c.tags, inputs, {},
            soa::test::per_body_spatial("R alpha+ + y"));
   }
 }

@@ -37,6 +37,7 @@ using Vec6 = soa::Vec6<double>;
 using Mat6 = soa::Mat6<double>;
 using MatX = soa::MatX<double>;
 using VecX = soa::VecX<double>;
+using soa::test::stack;
 
 constexpr double kEps = soa::eps<double>();
 
@@ -123,20 +124,7 @@ struct MassAndBias {
   }
 };
 
-// Per-body vectors stacked tip first (6 per body, or n_k per body).
-Vec6 as6(const Vec6& v) {
-  return v;
-}
-template <class Kind>
-Vec6 as6(const soa::SpatialVector<double, Kind>& v) {
-  return v.vector();
-}
-template <class V>
-VecX stack(const std::vector<V>& v) {
-  VecX s(6 * Eigen::Index(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = as6(v[i]);
-  return s;
-}
+// Per-body vectors stacked tip first: 6 per body (soa::test::stack), or n_k per body.
 template <class V>
 VecX stack_dofs(const std::vector<V>& v) {
   Eigen::Index size = 0;

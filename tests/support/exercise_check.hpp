@@ -225,6 +225,25 @@ inline unsigned chain_tags(const Model& m, const State& x) {
   return t;
 }
 
+// --- Stacked per-body quantities -----------------------------------------------------------------
+
+inline Vec6<double> as_vec6(const Vec6<double>& v) {
+  return v;
+}
+template <class Kind>
+Vec6<double> as_vec6(const SpatialVector<double, Kind>& v) {
+  return v.vector();
+}
+
+/// Per-body spatial vectors (or 6-vectors) stacked tip first, as the operators lay them out:
+/// body k at rows 6(k-1) ... 6k-1.
+template <class V>
+VecX<double> stack(const std::vector<V>& v) {
+  VecX<double> s(6 * Eigen::Index(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) s.segment<6>(6 * Eigen::Index(i)) = as_vec6(v[i]);
+  return s;
+}
+
 // --- Names of the entries of a result, for "where the error is" ---------------------------------
 
 /// Names entry (i, j) of a result and the part it belongs to (the error is summed per part).
