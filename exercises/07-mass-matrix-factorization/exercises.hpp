@@ -15,7 +15,8 @@
 /// soa::articulated_inertias fills soa::ArticulatedT: `art.P[k-1]`, `art.D[k-1]`,
 /// `art.D_inv[k-1]`, `art.G[k-1]` (6 x n_k) and `art.tau_bar(m, theta, k)`. From lessons 3-4,
 /// soa::OperatorsT::build gives the dense \f$\mathcal E_\phi\f$, \f$\phi\f$, \f$H\f$, \f$M\f$.
-/// \f$H^*(k)\f$ is the 6 x n_k matrix `m.body(k).hinge.H_star(theta + q_offset)`.
+/// \f$H^*(k)\f$ is the 6 x n_k matrix
+/// `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)`.
 ///
 /// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
 /// 3: work it out: derive a formula, predict a result), the time it usually takes, and the

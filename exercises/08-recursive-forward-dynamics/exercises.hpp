@@ -9,7 +9,8 @@
 /// coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative to the inertial
 /// frame), so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.apply(f)` is \f$\phi f\f$,
 /// `phi.transpose_apply(V)` is \f$\phi^* V\f$, `phi.matrix()` the 6x6 matrix. \f$H^*(k)\f$ is
-/// the 6 x n_k matrix `m.body(k).hinge.H_star(theta + q_offset)`, \f$H(k)\f$ its transpose.
+/// the 6 x n_k matrix `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)`,
+/// \f$H(k)\f$ its transpose.
 /// soa::update_phi fills `ws.phi`, soa::update_velocities fills `ws.V` and the Coriolis
 /// terms `ws.a`; soa::gyroscopic_force gives the gyroscopic term of \f$b(k)\f$;
 /// soa::articulated_inertias gives \f$P, D, G, P^+\f$ (lesson 6).
