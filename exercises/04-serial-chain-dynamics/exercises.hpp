@@ -44,8 +44,8 @@ struct Gathered {
 /// \f[ f(k) = \phi(k,k-1)\, f(k-1) + M(k)\,\alpha(k) + b(k), \quad f(0) = 0, \qquad
 ///     T(k) = H(k)\, f(k), \f]
 /// with \f$M(k)\f$ = `m.body(k).M` and \f$H(k)\f$ applied by
-/// `m.body(k).hinge.H_times(theta.data() + q_offset, f, T.data() + v_offset)` (the hinge map may depend on
-/// \p theta). Mind the index: \f$\phi(k,k-1)\f$ is `phi[k-2]`. Reproduces the tip-to-base
+/// `m.body(k).hinge.H_times(theta.data() + q_offset, f, T.data() + v_offset)` (the hinge
+/// map may depend on \p theta). Mind the index: \f$\phi(k,k-1)\f$ is `phi[k-2]`. Reproduces the tip-to-base
 /// sweep of soa::inverse_dynamics (which you must not call).
 Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vector<Phi>& phi,
                        const std::vector<Acceleration>& alpha, const std::vector<Force>& b);
