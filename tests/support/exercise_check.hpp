@@ -8,15 +8,15 @@
 /// from the reference (its catalogue of mistakes). When the check fails, its message says,
 /// in this order:
 ///   - which check failed, in words, how often, and the worst relative error;
-///   - the mistake of the catalogue the student's result equals, in every failing case
-///     where it differs from the right answer ("did you transpose?");
+///   - the mistake of the catalogue the student's result equals in every failing case
+///     ("did you transpose?");
 ///   - otherwise the symptom: the tag that every failing case has and every passing case
 ///     may lack ("passes at rest, fails moving: a velocity term");
-///   - where the error is in the worst case (per body, angular / linear part, per hinge),
-///     expected against got;
-///   - the worst case's inputs as code.
-/// The first line of the message is what `make exercises` shows on the exercise's row; the
-/// rest follows under it.
+///   - where the error is in the simplest failing case (per body, angular / linear part, per
+///     hinge), expected against got;
+///   - that case's inputs as code, and the worst case's (inline when short, else written to
+///     $SOA_EXERCISE_CASES as a small program).
+/// `make exercises` shows every failed check's message under the exercise's row.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -387,6 +387,8 @@ class Check {
     if (r >= worst_r_) {
       worst_r_ = r;
       worst_i_ = i;
+      worst_exp_ = e;
+      worst_inputs_ = inputs ? inputs() : "";
       worst_abs_ = (g - e).norm();
       worst_norm_ = e.norm();
       worst_nan_ = !g.allFinite();
@@ -596,10 +598,17 @@ class Check {
   // $SOA_EXERCISE_CASES (make exercises sets it to build/exercises/cases), named for the
   // exercise and the check.
   std::string case_code() const {
-    if (shown_inputs_.empty()) return "";
-    const std::string head = "  case " + std::to_string(shown_i_) + " as code";
-    if (std::count(shown_inputs_.begin(), shown_inputs_.end(), '\n') <= 12)
-      return head + " (paste into a program):\n" + indent(shown_inputs_);
+    std::string out = one_case(shown_i_, shown_inputs_, shown_exp_, "the simplest that fails", "");
+    if (worst_i_ != shown_i_ && !worst_inputs_.empty())
+      out += one_case(worst_i_, worst_inputs_, worst_exp_, "the worst", "-worst");
+    return out;
+  }
+  std::string one_case(int i, const std::string& inputs, const MatX<double>& expected,
+                       const char* which, const char* suffix) const {
+    if (inputs.empty()) return "";
+    const std::string head = "  case " + std::to_string(i) + " (" + which + ") as code";
+    if (std::count(inputs.begin(), inputs.end(), '\n') <= 12)
+      return head + " (paste into a program):\n" + indent(inputs);
     const char* dir = std::getenv("SOA_EXERCISE_CASES");
     if (!dir || !*dir) return head + ": set SOA_EXERCISE_CASES=<dir> to have it written out\n";
     const auto* info = testing::UnitTest::GetInstance()->current_test_info();
@@ -607,18 +616,19 @@ class Check {
     if (name.rfind("Exercise", 0) == 0) name = name.substr(8);
     std::string what;
     for (char ch : what_) what += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-    const std::string path = std::string(dir) + "/" + name + "-" + what.substr(0, 24) + ".cpp";
+    const std::string path =
+        std::string(dir) + "/" + name + "-" + what.substr(0, 24) + suffix + ".cpp";
     std::FILE* out = std::fopen(path.c_str(), "w");
     if (!out) return head + ": could not write " + path + "\n";
     std::fprintf(out,
-                 "// %s, case %d: the simplest random case where your result is wrong.\n"
+                 "// %s, case %d (%s): a random case where your result is wrong.\n"
                  "// Paste it into a program of your own (it includes exercises.hpp).\n"
                  "#include <iostream>\n\n#include \"exercises.hpp\"\n\nint main() {\n",
-                 what_.c_str(), shown_i_);
-    std::istringstream in(shown_inputs_);
+                 what_.c_str(), i, which);
+    std::istringstream in(inputs);
     std::string line;
     while (std::getline(in, line)) std::fprintf(out, "  %s\n", line.c_str());
-    std::fprintf(out, "  // expected (row by row): %s\n}\n", list(shown_exp_).c_str());
+    std::fprintf(out, "  // expected (row by row): %s\n}\n", list(expected).c_str());
     std::fclose(out);
     return head + " (paste into a program): " + path + "\n";
   }
@@ -658,7 +668,8 @@ class Check {
   int worst_i_ = -1;
   double shown_r_ = 0;
   int shown_i_ = -1;
-  MatX<double> shown_got_, shown_exp_;
+  MatX<double> shown_got_, shown_exp_, worst_exp_;
+  std::string worst_inputs_;
   std::string shown_inputs_;
   Naming naming_;
 };
