@@ -162,6 +162,25 @@ struct Variant {
   const char* says;
 };
 
+// A forward dynamics case (8.3, 8.6): the student's beta_dot \p bd from soa::ex08::\p fn
+// against the case's, to rounding scaled by nv cond(M) |beta_dot|, with the catalogue
+// \p variants computed by \p wrong(c, variant).
+template <class E, std::size_t K, class Wrong>
+void add_forward_dynamics(Check& check, int i, const Case& c, const VecX& bd, const char* fn,
+                          const Variant<E> (&variants)[K], Wrong wrong) {
+  const soa::Model& m = c.m();
+  const MassAndBias mb(m, c.c.x, c.c.f_ext);
+  check.add(
+      i, bd, c.beta_dot, m.nv() * mb.cond * std::max(1.0, c.beta_dot.norm()), c.c.tags,
+      [&] { return c.code() + "soa::VecX<double> bd = soa::ex08::" + fn + "(m, x, T, f_ext);\n"; },
+      [&] {
+        Mistakes out;
+        for (const auto& v : variants) out.push_back({v.kind, v.says, wrong(c, v.v)});
+        return out;
+      },
+      soa::test::per_dof(m, "beta_dot"));
+}
+
 // --- 8.1 ----------------------------------------------------------------------------------------
 
 // Sweep 2 of a revolute chain (exercise 8.1) with a classic mistake in it (or none), from the
@@ -449,20 +468,8 @@ TEST(Exercise8_3_ForwardDynamics1Dof, MatchesLibrary) {
   for (int i = 0; i < kCases; ++i) {
     const Case c(draw(rnd, i, o), rnd);
     const soa::Model& m = c.m();
-    const VecX bd = soa::ex08::forward_dynamics_1dof(m, c.c.x, c.T, c.c.f_ext);
-    const MassAndBias mb(m, c.c.x, c.c.f_ext);
-    check.add(
-        i, bd, c.beta_dot, m.nv() * mb.cond * std::max(1.0, c.beta_dot.norm()), c.c.tags,
-        [&] {
-          return c.code() +
-                 "soa::VecX<double> bd = soa::ex08::forward_dynamics_1dof(m, x, T, f_ext);\n";
-        },
-        [&] {
-          Mistakes out;
-          for (const auto& v : variants) out.push_back({v.kind, v.says, fd_1dof(c, v.v)});
-          return out;
-        },
-        soa::test::per_dof(m, "beta_dot"));
+    add_forward_dynamics(check, i, c, soa::ex08::forward_dynamics_1dof(m, c.c.x, c.T, c.c.f_ext),
+                         "forward_dynamics_1dof", variants, fd_1dof);
   }
 }
 
@@ -715,20 +722,8 @@ TEST(Exercise8_6_FindTheBug, MatchesLibrary) {
   for (int i = 0; i < kCases; ++i) {
     const Case c(draw(rnd, i, o), rnd);
     const soa::Model& m = c.m();
-    const VecX bd = soa::ex08::forward_dynamics_fixed(m, c.c.x, c.T, c.c.f_ext);
-    const MassAndBias mb(m, c.c.x, c.c.f_ext);
-    check.add(
-        i, bd, c.beta_dot, m.nv() * mb.cond * std::max(1.0, c.beta_dot.norm()), c.c.tags,
-        [&] {
-          return c.code() +
-                 "soa::VecX<double> bd = soa::ex08::forward_dynamics_fixed(m, x, T, f_ext);\n";
-        },
-        [&] {
-          Mistakes out;
-          for (const auto& v : variants) out.push_back({v.kind, v.says, aba(c, v.v)});
-          return out;
-        },
-        soa::test::per_dof(m, "beta_dot"));
+    add_forward_dynamics(check, i, c, soa::ex08::forward_dynamics_fixed(m, c.c.x, c.T, c.c.f_ext),
+                         "forward_dynamics_fixed", variants, aba);
   }
 }
 
