@@ -5,14 +5,13 @@
 # tests/exercises/stubs.sha256: a student's work, committed or not, is never built or
 # judged by `make test` (only `make exercises` looks at it). Git plays no part.
 #
-if(CMAKE_SCRIPT_MODE_FILE)
-  cmake_policy(VERSION 3.25)
-endif()
-
-# Included by tests/CMakeLists.txt for soa_stub_status(); also a script:
+# Included by exercises/CMakeLists.txt for soa_stub_status(); also a script:
 #   cmake -DROOT=<source dir> -P tests/exercises/stubs.cmake            lists each lesson's state
 #   cmake -DROOT=<source dir> -DWRITE=ON -P tests/exercises/stubs.cmake rewrites stubs.sha256
 #     (after changing a statement or a stub: `make stub-sums`)
+if(CMAKE_SCRIPT_MODE_FILE)
+  cmake_policy(VERSION 3.25)
+endif()
 
 # The files of lesson directory <dir> (NN-topic) that the checksums cover, relative to <root>.
 function(soa_stub_files root dir out)
