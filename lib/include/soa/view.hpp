@@ -1,0 +1,119 @@
+/// \file
+/// The 3D viewer's data: what a chain looks like and where its bodies are, frame by frame,
+/// as the library computes it; written with the viewer page into a folder that opens from
+/// `file://` with nothing loaded from the network (notes page "Viewing a chain in 3D",
+/// docs/viewer.md, which also documents the data format).
+///
+/// The page only renders: every pose, velocity, force, energy and tip position it shows comes
+/// from here (soa's kinematics, inverse and forward dynamics), never from JavaScript.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "soa/scene.hpp"
+
+namespace soa::view {
+
+/// How a body is drawn, in its own frame (the file's body frame, at its hinge: \f$O_k\f$ for a
+/// body with a hinge, the locked body's own frame for a locked one).
+struct Body {
+  std::string name;
+  std::string hinge;         ///< "revolute", "prismatic", ..., "locked" (the scene's names)
+  Vec3<double> axis{0, 0, 0};  ///< the hinge axis for revolute/prismatic hinges, else zero
+  /// The far end of the body's solid: the next body's hinge point (fixed in this body); for
+  /// the last body, twice its own centre of mass (its far end when the centre is midway).
+  Vec3<double> segment{0, 0, 0};
+  Vec3<double> com{0, 0, 0};  ///< centre of mass of what rides on this frame (merged bodies)
+  double mass = 0;            ///< 0: no ellipsoid (a locked body merged into its inboard one)
+  /// The inertia ellipsoid about the centre of mass: the solid ellipsoid of uniform density
+  /// with the same mass and inertia, semi-axes \f$a_i = \sqrt{5 (J_j + J_k - J_i)/(2m)}\f$ along
+  /// the principal axes (\p axes_quaternion, x y z w, body frame to principal frame).
+  Vec3<double> radii{0, 0, 0};
+  std::array<double, 4> axes_quaternion{0, 0, 0, 1};
+};
+
+/// One instant: per body (file order), the pose, and on request the spatial velocity and the
+/// inter-body force, all in inertial (world) coordinates.
+struct Frame {
+  double t = 0;
+  double energy = 0;
+  /// 7 per body: position of the body frame's origin, then its orientation as a quaternion
+  /// x y z w (inertial from body).
+  std::vector<double> pose;
+  /// 6 per body, or empty: \f$V\f$ at the body frame's origin, \f$[\omega; v]\f$, world axes.
+  std::vector<double> V;
+  /// 6 per body, or empty: the inter-body force \f$f(k)\f$ on body k at its hinge \f$O_k\f$,
+  /// \f$[N; F]\f$, world axes (zeros for a locked body: its hinge transmits nothing apart).
+  std::vector<double> f;
+  Vec3<double> tip{0, 0, 0};  ///< world position of the tip point (for the tip path)
+};
+
+/// A vector fixed in space (lesson 2: the angular momentum of a torque-free body).
+struct FixedVector {
+  std::string label;
+  Vec3<double> origin{0, 0, 0}, vector{0, 0, 0};
+};
+
+/// A run: the frames of one trajectory, with its label ("RK4, h = 0.02 s").
+struct Run {
+  std::string label;
+  std::vector<Frame> frames;
+};
+
+/// Everything the page shows. Several runs of the same bodies are drawn side by side.
+struct View {
+  std::string title;
+  std::string note;  ///< e.g. the decimation: "10001 steps shown as 401 frames"
+  Vec3<double> gravity{0, 0, 0};
+  std::vector<Body> bodies;
+  int tip_body = -1;                     ///< index into bodies of the tip (-1: no tip path)
+  Vec3<double> tip_point{0, 0, 0};       ///< the tip point in that body's frame
+  std::vector<FixedVector> fixed;
+  std::vector<Run> runs;
+};
+
+/// The bodies of a scene (file order, locked ones included), tip = the last body's far end.
+View view_of(const Scene& scene);
+
+/// What a recorder computes per frame beyond the poses.
+struct Quantities {
+  bool velocity = true;  ///< V per body
+  bool force = true;     ///< f(k) per body (needs a forward and an inverse dynamics per frame)
+};
+
+/// Records frames of a scene's motion at most \p budget times over [0, t_end] (the first
+/// state at or after each multiple of t_end / (budget - 1)), and the last state always.
+class Recorder {
+ public:
+  Recorder(const Scene& scene, double t_end, std::size_t budget = 400, Quantities q = {});
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+  /// Offers the state at time \p t (every step may be offered; most are skipped).
+  void offer(double t, const State& x);
+  /// Records the state at \p t whatever the budget (the final state).
+  void record(double t, const State& x);
+  /// The run so far, with how many states were offered and kept (for View::note).
+  Run take(const std::string& label);
+  long offered() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+/// The frame budget of a run the caller did not size: 400 frames.
+inline constexpr std::size_t kDefaultFrames = 400;
+
+/// Writes the page into the folder \p dir: index.html, viewer.js, viewer.css, data.js,
+/// three.min.js and OrbitControls.js (from Debian's libjs-three). The folder is created; an
+/// existing folder is refused unless it holds nothing but a viewer's files (so nothing of the
+/// user's is lost); the files are written beside and renamed into place only when all are
+/// complete. Throws soa::Error naming the folder or the file.
+void write(const View& view, const std::filesystem::path& dir);
+
+}  // namespace soa::view
