@@ -124,8 +124,8 @@ class Recorder {
 /// The frame budget of a run the caller did not size: 400 frames.
 inline constexpr std::size_t kDefaultFrames = 400;
 
-/// "10001 states shown as 400 frames (one every 25.1 ms)", or "all 51 states shown" when
-/// \p frames == \p states.
+/// "10001 states shown as 400 frames (one every 25.1 ms)", or "all 51 states shown" ("1
+/// state shown") when \p frames == \p states.
 std::string decimation_note(long states, std::size_t frames, double interval);
 
 /// Where three.min.js and OrbitControls.js are taken from: the environment variable
