@@ -750,7 +750,8 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
       f.set_offset((locked.empty() || locked.back().first + 1 != i
                         ? Pose()
                         : locked.back().second.offset()) *
-                   b.placement);
+                       b.placement,
+                   b.M.p());
       f.locked = true;
       M = M + transform(Phi(f.offset()), b.M);  // as ModelT::from_base_first() does
       if (!is_finite(M))

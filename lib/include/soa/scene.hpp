@@ -45,14 +45,26 @@ struct Scene {
     int k = 0;            ///< the course number of the model body it is fixed on
     bool locked = false;  ///< merged through a locked hinge (no coordinates of its own)
     /// \f${}^{O_k}T_F\f$: the identity unless the body is locked.
-    const Pose& offset() const {
-      static const Pose identity;
-      return offset_ ? *offset_ : identity;
+    const Pose& offset() const { return locked_ ? locked_->offset : Locked::none().offset; }
+    /// A locked body's own centre of mass, in its frame F (the model merged its mass into
+    /// body k, whose \f$M(k)\f$ has the centre of the whole); zero for a body that keeps its
+    /// hinge, whose own centre is \f$M(k)\f$'s unless locked bodies ride on it.
+    const Vec3<double>& own_com() const { return locked_ ? locked_->com : Locked::none().com; }
+    /// Makes the frame a locked body's: fixed on body k at \p T, with its own centre of mass.
+    void set_offset(const Pose& T, const Vec3<double>& own_com = Vec3<double>::Zero()) {
+      locked_ = std::make_shared<const Locked>(Locked{T, own_com});
     }
-    void set_offset(const Pose& T) { offset_ = std::make_shared<const Pose>(T); }
 
    private:
-    std::shared_ptr<const Pose> offset_;  // only locked bodies have one: 56 bytes a frame
+    struct Locked {
+      Pose offset;
+      Vec3<double> com = Vec3<double>::Zero();
+      static const Locked& none() {
+        static const Locked identity{};
+        return identity;
+      }
+    };
+    std::shared_ptr<const Locked> locked_;  // only locked bodies have one: 56 bytes a frame
   };
   /// Every body of the file, in the order of the file, locked ones included.
   std::vector<Frame> frames;

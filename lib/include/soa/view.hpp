@@ -22,16 +22,20 @@ namespace soa::view {
 /// body with a hinge, the locked body's own frame for a locked one).
 struct Body {
   std::string name;
-  std::string hinge;         ///< "revolute", "prismatic", ..., "locked" (the scene's names)
+  std::string hinge;           ///< "revolute", "prismatic", ..., "locked" (the scene's names)
   Vec3<double> axis{0, 0, 0};  ///< the hinge axis for revolute/prismatic hinges, else zero
   /// The far end of the body's solid: the next body's hinge point (fixed in this body); for
   /// the last body, twice its own centre of mass (its far end when the centre is midway).
   Vec3<double> segment{0, 0, 0};
-  Vec3<double> com{0, 0, 0};  ///< centre of mass of what rides on this frame (merged bodies)
-  double mass = 0;            ///< 0: no ellipsoid (a locked body merged into its inboard one)
+  /// Centre of mass of what rides on the frame: model body k's (locked bodies merged into it
+  /// included) for a body with a hinge, the body's own for a locked one.
+  Vec3<double> com{0, 0, 0};
+  double mass = 0;  ///< model body k's; 0 for a locked body (merged: no ellipsoid of its own)
   /// The inertia ellipsoid about the centre of mass: the solid ellipsoid of uniform density
   /// with the same mass and inertia, semi-axes \f$a_i = \sqrt{5 (J_j + J_k - J_i)/(2m)}\f$ along
-  /// the principal axes (\p axes_quaternion, x y z w, body frame to principal frame).
+  /// the principal axes. \p axes_quaternion (x y z w) is \f${}^B R_P\f$, the orientation of the
+  /// principal frame P in the body frame B: it turns principal-frame vectors into body-frame
+  /// ones (its matrix's columns are the principal axes; radii[i] lies along column i).
   Vec3<double> radii{0, 0, 0};
   std::array<double, 4> axes_quaternion{0, 0, 0, 1};
 };
@@ -67,17 +71,20 @@ struct Run {
 /// Everything the page shows. Several runs of the same bodies are drawn side by side.
 struct View {
   std::string title;
-  std::string note;  ///< e.g. the decimation: "10001 steps shown as 401 frames"
+  std::string note;  ///< e.g. the decimation (Recorder::note()); "" for none
   Vec3<double> gravity{0, 0, 0};
   std::vector<Body> bodies;
-  int tip_body = -1;                     ///< index into bodies of the tip (-1: no tip path)
-  Vec3<double> tip_point{0, 0, 0};       ///< the tip point in that body's frame
+  int tip_body = -1;                ///< index into bodies of the tip (-1: no tip path)
+  Vec3<double> tip_point{0, 0, 0};  ///< the tip point in that body's frame
   std::vector<FixedVector> fixed;
   std::vector<Run> runs;
 };
 
 /// The bodies of a scene (file order, locked ones included), tip = the last body's far end.
 View view_of(const Scene& scene);
+
+/// The frame budget of a run the caller did not size: 400 frames.
+inline constexpr std::size_t kDefaultFrames = 400;
 
 /// What a recorder computes per frame beyond the poses.
 struct Quantities {
@@ -87,33 +94,56 @@ struct Quantities {
 
 /// Records frames of a scene's motion at most \p budget times over [0, t_end] (the first
 /// state at or after each multiple of t_end / (budget - 1)), and the last state always.
+/// Per frame, from the scene's model (lessons 3-4): the poses by update_poses(), \f$V(k)\f$ by
+/// update_velocities(), \f$f(k)\f$ by inverse_dynamics() at the accelerations
+/// \f$\dot\beta\f$ of the forward dynamics (ChainSystem, the scene's external forces and
+/// springs, no hinge forces), the energy by ChainSystem::energy(). Keeps a reference to
+/// \p scene, which must outlive it. Only the frames kept cost anything.
 class Recorder {
  public:
-  Recorder(const Scene& scene, double t_end, std::size_t budget = 400, Quantities q = {});
+  /// Throws soa::Error for a \p t_end that is negative or not finite, or a \p budget below 2.
+  Recorder(const Scene& scene, double t_end, std::size_t budget = kDefaultFrames,
+           Quantities q = {});
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
   /// Offers the state at time \p t (every step may be offered; most are skipped).
   void offer(double t, const State& x);
-  /// Records the state at \p t whatever the budget (the final state).
+  /// Records the state at \p t whatever the budget (the final state; at the budget it takes
+  /// the last frame's place). The state of the last frame kept is not recorded twice.
   void record(double t, const State& x);
-  /// The run so far, with how many states were offered and kept (for View::note).
+  /// The frames so far, as a run called \p label (they are moved out: a second take()
+  /// returns only the frames recorded after the first).
   Run take(const std::string& label);
-  long offered() const;
+  long offered() const;      ///< how many states were offered or recorded
+  std::size_t kept() const;  ///< how many frames were recorded (taken ones included)
+  double interval() const;   ///< the time between frames: t_end / (budget - 1)
+  /// The decimation, for View::note: decimation_note(offered(), kept(), interval()).
+  std::string note() const;
 
  private:
   struct Impl;
   Impl* impl_;
 };
 
-/// The frame budget of a run the caller did not size: 400 frames.
-inline constexpr std::size_t kDefaultFrames = 400;
+/// "10001 states shown as 400 frames (one every 25.1 ms)", or "all 51 states shown" ("1
+/// state shown") when \p frames == \p states.
+std::string decimation_note(long states, std::size_t frames, double interval);
+
+/// Where three.min.js and OrbitControls.js are taken from: the environment variable
+/// SOA_THREE_DIR when set and not empty, else the folder configured at build time (CMake's
+/// SOA_THREE_DIR, /usr/share/javascript/three by default: Debian's libjs-three). The files
+/// are build/three.min.js and examples/js/controls/OrbitControls.js in it.
+std::filesystem::path three_dir();
 
 /// Writes the page into the folder \p dir: index.html, viewer.js, viewer.css, data.js,
 /// three.min.js and OrbitControls.js (from Debian's libjs-three). The folder is created; an
 /// existing folder is refused unless it holds nothing but a viewer's files (so nothing of the
 /// user's is lost); the files are written beside and renamed into place only when all are
-/// complete. Throws soa::Error naming the folder or the file.
+/// complete. Throws soa::Error naming the folder or the file; before anything is created or
+/// written, for a number that is not finite ("view: run 0 \"RK4\", frame 12 (t = 0.3): V of
+/// body \"link3\" is not finite"), a frame of the wrong size, or three.js not found ("three.js
+/// not found: <path> (Debian package libjs-three)").
 void write(const View& view, const std::filesystem::path& dir);
 
 }  // namespace soa::view

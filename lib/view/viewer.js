@@ -1,0 +1,2 @@
+// Placeholder: the viewer's code is written in lib/view/ on its own branch (issue 14).
+"use strict";
