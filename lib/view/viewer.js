@@ -236,7 +236,12 @@
       box.expandByPoint(vec(fv.origin).addScaledVector(vec(fv.vector), scale.fixed));
     }
     if (box.isEmpty()) box.expandByPoint(new THREE.Vector3());
-    return { box, size, max, scale, fixed };
+    // the size of one body, for what is drawn on each (hinge balls, axes, frames, rods): the
+    // median length of the segments, at most the whole size (a 50-link chain is 50 links long)
+    const lengths = data.bodies.map((b) => vec(b.segment).length()).filter((l) => l > 1e-9 * size);
+    lengths.sort((a, b) => a - b);
+    const link = lengths.length ? Math.min(size, lengths[lengths.length >> 1]) : size;
+    return { box, size, link, bodies: nb, max, scale, fixed };
   }
 
   // ---------------------------------------------------------------------------------------
@@ -381,32 +386,35 @@
   // in one group placed by the body's pose.
   function addBody(view, b, body, k, m) {
     const s = m.size;
+    // what is drawn on a body scales with one body (m.link), within the whole chain's size
+    const thick = Math.min(0.009 * s, Math.max(0.09 * m.link, 0.003 * s));
+    const reach = Math.min(0.12 * s, 0.9 * m.link);
     const g = new THREE.Group();
     const color = COLORS.bodies[b % COLORS.bodies.length];
     const o = new THREE.Vector3();
     const seg = vec(body.segment);
-    let frameSize = 0.1 * s;
+    let frameSize = Math.min(0.1 * s, 0.8 * m.link);
     if (seg.length() > 1e-9 * s) {
-      g.add(rod(o, seg, 0.009 * s, color));
-      g.add(ball(seg, 0.011 * s, color));
+      g.add(rod(o, seg, thick, color));
+      g.add(ball(seg, 1.2 * thick, color));
     } else {
       // no segment (a single free body): the uniform box of the same inertia about the centre
       // of mass (half sides sqrt(3/5) times the ellipsoid's semi-axes), its frame outside it
       const box = new THREE.Mesh(shapes.box, material(color));
       const r = vec(body.radii).multiplyScalar(Math.sqrt(0.6));
       box.scale.set(r.x || 0.05 * s, r.y || 0.05 * s, r.z || 0.05 * s);
-      frameSize = Math.max(frameSize, 1.3 * Math.max(r.x, r.y, r.z) + vec(body.com).length());
+      frameSize = Math.max(0.1 * s, 1.3 * Math.max(r.x, r.y, r.z) + vec(body.com).length());
       box.position.copy(vec(body.com));
       box.quaternion.fromArray(body.axes_quaternion);
       g.add(box);
     }
-    g.add(ball(o, 0.022 * s, COLORS.hinge));
+    g.add(ball(o, 2.4 * thick, COLORS.hinge));
     const axis = vec(body.axis);
     if (axis.length() > 0) {
-      axis.normalize().multiplyScalar(0.12 * s);
-      part(g, rod(axis.clone().negate(), axis, 0.004 * s, COLORS.axis), view.show.axes);
+      axis.normalize().multiplyScalar(reach);
+      part(g, rod(axis.clone().negate(), axis, 0.45 * thick, COLORS.axis), view.show.axes);
     }
-    part(g, triad(frameSize, 0.0035 * s), view.show.frames);
+    part(g, triad(frameSize, 0.4 * thick), view.show.frames);
     if (body.mass > 0) {
       const e = new THREE.Mesh(shapes.sphere, material(color, 0.3));
       e.position.copy(vec(body.com));
@@ -417,13 +425,16 @@
     }
     view.scene.add(g);
     view.bodies.push(g);
+    // every frame named on a short chain; on a long one the base and the tip only
+    const n = m.bodies;
     const name = (k === null ? '' : 'O' + k + ' ') + body.name;
-    view.frameLabels.push(label(view, name, COLORS.hinge, 'frames'));
+    view.frameLabels.push(n <= 12 || b === 0 || b === n - 1
+      ? label(view, name, COLORS.hinge, 'frames') : null);
   }
 
   // The arrows of V(k) (omega, v) and f(k) (N, F) at each body's origin.
   function addArrows(view, nb, m) {
-    const r = 0.006 * m.size;
+    const r = Math.min(0.006 * m.size, 0.06 * m.link);
     for (let b = 0; b < nb; ++b) {
       const a = {
         omega: makeArrow(COLORS.omega, true, r),
@@ -441,7 +452,7 @@
     const points = run.tip.map((p) => vec(p));
     const all = line(points, COLORS.tipDim);
     view.sofar = line(points, COLORS.tip);
-    view.tipBall = ball(new THREE.Vector3(), 0.014 * m.size, COLORS.tip);
+    view.tipBall = ball(new THREE.Vector3(), Math.min(0.014 * m.size, 0.14 * m.link), COLORS.tip);
     for (const o of [all, view.sofar, view.tipBall]) {
       view.scene.add(o);
       view.show.tip.push(o);
@@ -527,7 +538,7 @@
       g.position.fromArray(pose, 7 * b);
       g.quaternion.fromArray(pose, 7 * b + 3);
       g.updateMatrixWorld(true);
-      view.frameLabels[b].at.copy(g.position);
+      if (view.frameLabels[b]) view.frameLabels[b].at.copy(g.position);
       poseArrows(view, b, k, g.position, m, show);
     });
     if (view.sofar) {
