@@ -25,7 +25,8 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # Debian packages the project needs (see README.md). Checked with dpkg-query; only the
 # missing ones are installed.
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
-  libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax
+  libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
+  libjs-three chromium
 
 .PHONY: all run test exercises stub-sums docs bench deps configure build clean format
 

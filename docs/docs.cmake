@@ -5,7 +5,9 @@
 #   2. run Doxygen on DOXYFILE into HTML (a fresh folder; any warning fails);
 #   3. copy the MathJax subset the pages need from MATHJAX into HTML/mathjax (links
 #      dereferenced, so the folder can be copied or served anywhere);
-#   4. check that no page loads anything from the network.
+#   4. copy the 3D viewers the tour wrote (COURSE/NN-topic/<name>/index.html, docs/viewer.md)
+#      into HTML/viewers/<name>/, where the lesson pages embed them;
+#   5. check that no page loads anything from the network.
 # Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, TABLES, MATHJAX.
 cmake_minimum_required(VERSION 3.25)
 foreach(var DOXYGEN DOXYFILE HTML COURSE FIGURES TABLES MATHJAX)
@@ -83,7 +85,23 @@ foreach(part IN LISTS mathjax_parts)
   endforeach()
 endforeach()
 
-# 4. Offline: no script, style sheet, image or frame from the network (Doxygen's footer link
+# 4. The viewers: each a folder with its page, its data and three.js; the pages show them in
+# an <iframe src="viewers/<name>/index.html">, beside their still image (a figure above).
+file(GLOB viewer_pages "${COURSE}/[0-9][0-9]-*/*/index.html")
+set(seen "")
+foreach(page IN LISTS viewer_pages)
+  get_filename_component(dir "${page}" DIRECTORY)
+  get_filename_component(name "${dir}" NAME)
+  if(name IN_LIST seen)
+    message(FATAL_ERROR "docs: two lessons wrote a viewer named ${name} under ${COURSE}; "
+                        "viewer names must be unique across lessons")
+  endif()
+  list(APPEND seen "${name}")
+  file(COPY "${dir}/" DESTINATION "${HTML}/viewers/${name}")
+endforeach()
+list(LENGTH viewer_pages n_viewers)
+
+# 5. Offline: no script, style sheet, image or frame from the network (Doxygen's footer link
 # to doxygen.org is a link, not a load, and is allowed).
 file(GLOB_RECURSE pages "${HTML}/*.html")
 set(bad "")
@@ -103,4 +121,4 @@ list(LENGTH pages n_pages)
 list(LENGTH figures n_figures)
 list(LENGTH tables n_tables)
 message(STATUS "Course notes: ${n_pages} pages, ${n_figures} figures, ${n_tables} tables, "
-               "offline math -> ${HTML}/index.html")
+               "${n_viewers} 3D viewers, offline math -> ${HTML}/index.html")

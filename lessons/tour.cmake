@@ -1,10 +1,14 @@
 # Runs the lesson programs in order (cmake -P): one line per lesson with its checks and the
 # files it wrote; the full output of each lesson is kept in its folder as output.txt.
+# A lesson that wrote 3D viewers lists them in its folder's views.txt, one per line:
+# "<folder> <query>" (lessons/common/viewer.hpp); each gets a still image <folder>.png, taken
+# by CHROMIUM (lib/view/screenshot.cmake) at that query, for the notes.
 # LESSONS: entries NN-topic|lesson program[|report program...], "-" for a lesson program not
 # written yet. Report programs (lessons/NN-topic/<name>/, built as lessonNN_<name>) run
 # first, into the lesson's freshly cleared folder, each output kept as <name>_output.txt;
 # then the lesson program.
 string(REPLACE "," ";" lessons "${LESSONS}")
+include("${CMAKE_CURRENT_LIST_DIR}/../lib/view/screenshot.cmake")
 file(MAKE_DIRECTORY "${OUT}")
 set(failed 0)
 message("")
@@ -56,6 +60,27 @@ foreach(entry IN LISTS lessons)
   endif()
   if(NOT rc EQUAL 0)
     set(failed 1)
+  endif()
+  # The still image of each viewer the lesson wrote.
+  if(EXISTS "${out_dir}/views.txt")
+    file(STRINGS "${out_dir}/views.txt" views)
+    foreach(view IN LISTS views)
+      string(REGEX MATCH "^([^ ]+) ?(.*)$" _ "${view}")
+      set(name "${CMAKE_MATCH_1}")
+      set(query "${CMAKE_MATCH_2}")
+      if(NOT CHROMIUM)
+        message("  ${name}.png: no still image, Chromium was not found when CMake configured "
+                "(Debian package chromium; make run installs it)")
+        set(failed 1)
+        continue()
+      endif()
+      soa_view_screenshot("${CHROMIUM}" "${out_dir}/${name}/index.html" "${query}"
+                          "${out_dir}/${name}.png" "1000,620" why)
+      if(why)
+        message("  ${name}.png: ${why}")
+        set(failed 1)
+      endif()
+    endforeach()
   endif()
   file(GLOB written RELATIVE "${out_dir}" "${out_dir}/*")
   list(SORT written)
