@@ -372,6 +372,34 @@ TEST(cli_robustness, NamesWithCommasQuotesAndLineBreaksSurviveTheCsv) {
   header.push_back("quaternion_norm_error");
   EXPECT_EQ(rows[0], header);
   EXPECT_EQ(json::parse(r.out)["columns"], json(names));
+  // ... and view --trajectory reads them back (quoted fields across lines), and names one in
+  // a message on one line.
+  const Outcome v = soa(s, {"view", s / "names.json", "--out", s / "v", "--trajectory", csv});
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_EQ(json::parse(v.out)["rows"], 3);
+  auto bad = rows;
+  bad[3][3] = "y";  // the last row's q of "two\nlines"; the header takes lines 1 to 3
+  std::string text;
+  for (const auto& row : bad) {
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string& f = row[c];
+      text += c ? "," : "";
+      if (f.find_first_of(",\"\n") == std::string::npos) {
+        text += f;
+        continue;
+      }
+      text += '"';
+      for (const char ch : f) text += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+      text += '"';
+    }
+    text += "\n";
+  }
+  write_file(s / "bad.csv", text);
+  const Outcome e =
+      soa(s, {"view", s / "names.json", "--out", s / "w", "--trajectory", s / "bad.csv"});
+  EXPECT_EQ(e.rc, 1);
+  expect_one_line(e);
+  EXPECT_EQ(e.err, s / "bad.csv" + ": line 6, column \"q:two\\nlines\": \"y\" is not a number\n");
 }
 
 // --- mass-matrix --operational (lesson 7, section 8) ---------------------------------------
