@@ -21,8 +21,42 @@ constexpr VerbInfo kVerbs[] = {
     {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check"},
     {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --operational, --check"},
     {Verb::Simulate, "simulate",
-     "--q, --qd, --integrator, --dt, --tol, --t-end, --out, --every, --out-dt"},
+     "--q, --qd, --integrator, --dt, --tol, --t-end, --out, --every, --out-dt, --view, --frames, "
+     "--no-velocity, --no-force"},
+    {Verb::View, "view",
+     "--out, --q, --qd, --integrator, --dt, --tol, --t-end, --trajectory, --frames, "
+     "--no-velocity, --no-force"},
 };
+
+/// The options that do not go together, and the ones that need another (exit code 2).
+void check_combinations(const Args& a) {
+  const Verb v = *a.verb;
+  auto given = [](const char* name, bool present) { return present ? name : nullptr; };
+  // The first of the options that only apply to a viewer.
+  const char* viewer_option = a.frames        ? "--frames"
+                              : a.no_velocity ? "--no-velocity"
+                              : a.no_force    ? "--no-force"
+                                              : nullptr;
+  if (v == Verb::Simulate && viewer_option && !a.view)
+    throw UsageError(std::string("simulate: ") + viewer_option +
+                     " needs --view DIR, the viewer folder it applies to");
+  if (v != Verb::View) return;
+  if (!a.out) throw UsageError("view: missing --out DIR, the folder to write the viewer to");
+  if (a.trajectory) {
+    // A trajectory is a run already: the options that start one have nothing to do.
+    for (const char* o : {given("--integrator", bool(a.integrator)), given("--dt", bool(a.dt)),
+                          given("--tol", bool(a.tol)), given("--t-end", bool(a.t_end)),
+                          given("--q", bool(a.q)), given("--qd", bool(a.qd))})
+      if (o)
+        throw UsageError(std::string("view: --trajectory and ") + o +
+                         " do not go together (a trajectory file is a run already; " + o +
+                         " starts another)");
+  } else if (a.frames && !a.simulates()) {
+    throw UsageError(
+        "view: --frames needs --trajectory FILE or a simulation (--integrator, --dt, --tol); "
+        "a scene's state is one frame");
+  }
+}
 
 std::string trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t");
@@ -61,7 +95,7 @@ Args parse_args(const std::vector<std::string>& argv) {
       throw UsageError("expected a verb before \"" + argv[0] + "\"");
     throw UsageError("unknown verb \"" + argv[0] +
                      "\" (kinematics, jacobian, inverse-dynamics, forward-dynamics, "
-                     "mass-matrix or simulate)");
+                     "mass-matrix, simulate or view)");
   }
   const Verb v = *a.verb;
   const std::string verb = verb_name(v);
@@ -80,10 +114,15 @@ Args parse_args(const std::vector<std::string>& argv) {
           if (info.verb == v) options = info.options;
         throw UsageError(verb + " does not take " + option + " (it takes " + options + ")");
       };
-      if (option == "--inverse" || option == "--check") {  // flags
+      bool* flag = option == "--inverse"       ? &a.inverse
+                   : option == "--check"       ? &a.check
+                   : option == "--no-velocity" ? &a.no_velocity
+                   : option == "--no-force"    ? &a.no_force
+                                               : nullptr;
+      if (flag) {
         if (!takes(v, option)) refuse();
         if (eq != std::string::npos) throw UsageError(option + " takes no value");
-        (option == "--inverse" ? a.inverse : a.check) = true;
+        *flag = true;
         continue;
       }
       std::optional<std::string>* slot = option == "--q"             ? &a.q
@@ -99,6 +138,9 @@ Args parse_args(const std::vector<std::string>& argv) {
                                          : option == "--out-dt"      ? &a.out_dt
                                          : option == "--body"        ? &a.body
                                          : option == "--operational" ? &a.operational
+                                         : option == "--view"        ? &a.view
+                                         : option == "--trajectory"  ? &a.trajectory
+                                         : option == "--frames"      ? &a.frames
                                                                      : nullptr;
       if (!slot) throw UsageError("unknown option \"" + option + "\"");
       if (!takes(v, option)) refuse();
@@ -116,6 +158,7 @@ Args parse_args(const std::vector<std::string>& argv) {
     a.scene = arg;
   }
   if (a.scene.empty()) throw UsageError(verb + ": missing the scene file");
+  check_combinations(a);
   return a;
 }
 

@@ -13,10 +13,18 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class Verb { Kinematics, Jacobian, InverseDynamics, ForwardDynamics, MassMatrix, Simulate };
+enum class Verb {
+  Kinematics,
+  Jacobian,
+  InverseDynamics,
+  ForwardDynamics,
+  MassMatrix,
+  Simulate,
+  View
+};
 
 /// "kinematics", "jacobian", "inverse-dynamics", "forward-dynamics", "mass-matrix",
-/// "simulate".
+/// "simulate", "view".
 const char* verb_name(Verb v);
 
 struct Args {
@@ -27,14 +35,21 @@ struct Args {
   std::optional<std::string> operational;            ///< mass-matrix --operational BODY
   /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
   std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
+  /// The viewer: simulate --view DIR; view --trajectory FILE; both --frames N
+  std::optional<std::string> view, trajectory, frames;
   bool inverse = false;  ///< mass-matrix --inverse
   bool check = false;    ///< forward-dynamics, mass-matrix --check: the dense checks at any size
+  bool no_velocity = false, no_force = false;  ///< view, simulate --view: leave V, f out
+
+  /// view: a run is simulated (--integrator, --dt, --tol or --t-end given).
+  bool simulates() const { return integrator || dt || tol || t_end; }
 };
 
 /// True when the verb \p v takes \p option ("--q", "--inverse", ...).
 bool takes(Verb v, const std::string& option);
 
-/// Parses the arguments after the program name; throws UsageError.
+/// Parses the arguments after the program name; throws UsageError, also for options that do
+/// not go together (view --trajectory with a simulation's, simulate --frames without --view).
 Args parse_args(const std::vector<std::string>& argv);
 
 /// A comma-separated list of numbers ("0.1,-2,3e-1"); throws soa::Error("<option>: ...")

@@ -21,6 +21,10 @@ Usage:
   soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--operational BODY] [--check]
   soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
                        [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
+                       [--view DIR [--frames N] [--no-velocity] [--no-force]]
+  soa view             SCENE.json --out DIR [--q V,...] [--qd V,...]
+                       [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
+                       [--frames N] [--no-velocity] [--no-force]
   soa --help
   soa VERB --help
 
@@ -95,22 +99,30 @@ constexpr const char* kFrames = R"(Frames and vectors:
 
 )";
 
-/// The "Exit codes:" block; the output file and the signals only where simulate is.
+/// The "Exit codes:" block; the output files and the signals only where simulate and view
+/// are.
 std::string exit_help(std::optional<Verb> verb) {
   const bool sim = !verb || *verb == Verb::Simulate;
+  const bool view = !verb || *verb == Verb::View;
   return std::string(R"(Exit codes:
   0  the result is on stdout
   1  bad scene file or bad input: one line on stderr, "FILE: WHERE: PROBLEM"; out of
      memory: "FILE: out of memory while building ..."; an output that cannot be written:
      )") +
-         (sim ? "\"--out traj.csv: No space left on device\" or \"stdout: ...\""
-              : "\"stdout: No space left on device\"") +
+         (sim    ? "\"--out traj.csv: No space left on device\" or \"stdout: ...\""
+          : view ? "\"--out my_view: holds \"notes.txt\", which is not a file of the viewer; "
+                   "...\" or\n     \"stdout: ...\"; a bad trajectory: \"traj.csv: line 17, column "
+                   "\"qd:link3\": ...\""
+                 : "\"stdout: No space left on device\"") +
          R"(
-  2  usage error (unknown verb or option, missing scene file): one line on stderr
+  2  usage error (unknown verb or option, missing scene file, options that do not go
+     together): one line on stderr
 )" +
-         (sim ? "  130, 143  simulate stopped by SIGINT (Ctrl-C) or SIGTERM: the rows so far are "
-                "kept\n"
-              : "");
+         (sim || view ? std::string("  130, 143  ") + (sim ? "simulate" : "a simulation") +
+                            " stopped by SIGINT (Ctrl-C) or SIGTERM: " +
+                            (sim ? "the rows and the viewer so far are kept\n"
+                                 : "the viewer so far is kept\n")
+                      : "");
 }
 
 const std::string& full_help() {
@@ -122,7 +134,10 @@ const std::string& full_help() {
   mass-matrix       the mass matrix at q, with symmetry and definiteness checks, and
                     with --inverse its inverse, with --operational BODY the 6x6
                     operational-space inverse inertia J M^-1 J* of a body
-  simulate          integrate the motion over time, trajectory as CSV
+  simulate          integrate the motion over time, trajectory as CSV, and with
+                    --view DIR the run's 3D viewer
+  view              the 3D viewer of the chain (its state, a simulation or a trajectory
+                    file) as a folder DIR: open DIR/index.html in a browser
 
 )" + state_help(std::nullopt) + kFrames +
                                   exit_help(std::nullopt);
@@ -231,6 +246,7 @@ const std::string& simulate_help() {
       std::string(
           R"(Usage: soa simulate SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
                     [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
+                    [--view DIR [--frames N] [--no-velocity] [--no-force]]
 
 Integrates the scene's forward dynamics (lesson 8) from its state (or --q, --qd) over
 [0, T] (T = 1 s when --t-end is absent), with gravity, external forces, springs and
@@ -255,9 +271,53 @@ stiffness x step; the rows before the blow-up are kept in the --out file and the
 says so. Ctrl-C (SIGINT) or SIGTERM stops the run at the end of a step: the rows so far
 are kept, the summary on stdout has "interrupted" with the time, a line on stderr says
 so, exit code 130 or 143 (a second Ctrl-C ends the program at once, without the file).
+--view DIR also writes the run's 3D viewer into the folder DIR (soa view --help): at most
+N frames (--frames N, 400 when absent), with each body's V and f unless --no-velocity,
+--no-force. The folder is written with the starting state before the first step (a folder
+that cannot be used stops the command before the run), and with the run when it ends:
+blown up or interrupted included, the messages say so. On stdout, "view": the folder, its
+"open" (index.html), the frames and the "note". --view may go with --out.
 
 )") + state_help(Verb::Simulate) +
       exit_help(Verb::Simulate);
+  return text;
+}
+
+const std::string& view_help() {
+  static const std::string text =
+      std::string(
+          R"(Usage: soa view SCENE.json --out DIR [--q V,...] [--qd V,...]
+                [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
+                [--frames N] [--no-velocity] [--no-force]
+
+Writes the 3D viewer of the chain into the folder DIR: open DIR/index.html in a browser
+(from file://: nothing is loaded from the network). What it shows:
+  the state      the scene's, or --q, --qd: one frame
+  a simulation   --integrator, --dt or --tol, --t-end, as soa simulate takes them (soa
+                 simulate --help), recorded as it runs
+  a trajectory   --trajectory F.csv, written by soa simulate --out for this scene
+A run is shown as at most N frames (--frames N, 400 when absent, 2 to 100000): the first
+state at or after each multiple of T / (N - 1), and the last state always; the page's
+note says how many states became how many frames. Every number the page shows comes from
+the library: per frame each body's pose, its spatial velocity V (--no-velocity leaves it
+out) and the inter-body force f(k) at its hinge (--no-force), the energy, the tip.
+The folder is created; an existing one is used only when it holds nothing but a viewer's
+files (nothing of yours is replaced); the files appear when all are complete. A
+simulation writes the folder with its starting state before the first step (a folder
+that cannot be used stops the command before the run), then with the run when it ends,
+blown up or interrupted included (the messages say so).
+A trajectory is read and checked whole before anything is written: the header must be
+the one soa simulate --out writes for this scene (t, q: and qd: of every coordinate in
+file order, energy, quaternion_norm_error), then rows of finite numbers, times >= 0 that
+increase, quaternions of unit norm (within 1e-6; then normalized). Each problem is one
+line naming the file, the line and the column:
+  traj.csv: line 17, column "qd:link3": "x" is not a number
+On stdout, JSON: the scene, the "source" (state, simulation, trajectory), the "folder"
+and its index.html ("open"), the "run" label, the "frames" written, the "states"
+offered and the "note".
+
+)") + state_help(Verb::View) +
+      exit_help(Verb::View);
   return text;
 }
 
@@ -278,6 +338,8 @@ const char* help_text(std::optional<Verb> verb) {
       return mass_matrix_help().c_str();
     case Verb::Simulate:
       return simulate_help().c_str();
+    case Verb::View:
+      return view_help().c_str();
   }
   return full_help().c_str();
 }

@@ -109,6 +109,29 @@ OutputOptions output_options(const Args& a) {
   return o;
 }
 
+/// The viewer of view (--out DIR) or simulate (--view DIR): --frames (2 to kMaxFrames),
+/// --no-velocity, --no-force.
+ViewOptions view_options(const Args& a) {
+  ViewOptions o;
+  o.option = *a.verb == Verb::View ? "--out" : "--view";
+  o.dir = *a.verb == Verb::View ? *a.out : *a.view;
+  if (o.dir.empty()) throw Error(o.option + ": an empty folder name");
+  if (a.frames) {
+    const double n = number_of(a.frames, "--frames", 0);
+    if (!(n >= 2 && n == std::floor(n)))
+      throw Error("--frames: expected a whole number of frames >= 2, got " + *a.frames);
+    if (n > double(kMaxFrames))
+      throw Error("--frames: " + *a.frames + " is over the limit of " + std::to_string(kMaxFrames) +
+                  " frames (each holds every body's pose, V and f: 11.5 kB of data.js a "
+                  "frame for 50 bodies; the default is " +
+                  std::to_string(soa::view::kDefaultFrames) + ")");
+    o.frames = std::size_t(n);
+  }
+  o.quantities.velocity = !a.no_velocity;
+  o.quantities.force = !a.no_force;
+  return o;
+}
+
 /// Loads the scene and runs the verb. Errors after loading (command-line values, --body)
 /// gain the scene file's name, as the scene's own errors have it; so does running out of
 /// memory, with what was being built.
@@ -142,8 +165,20 @@ Result run(const Args& a) {
         r.emit = mass_matrix(s, x, a.inverse, a.check, operational);
         break;
       case Verb::Simulate:
-        r = simulate(s, x, simulation_options(a), output_options(a));
+        if (a.view) {
+          const ViewOptions v = view_options(a);
+          r = simulate(s, x, simulation_options(a), output_options(a), &v);
+        } else {
+          r = simulate(s, x, simulation_options(a), output_options(a));
+        }
         break;
+      case Verb::View: {
+        const ViewOptions v = view_options(a);
+        std::optional<SimulationOptions> sim;
+        if (a.simulates()) sim = simulation_options(a);
+        r = soa::cli::view(s, x, a.q || a.qd, v, sim, a.trajectory);
+        break;
+      }
     }
     set_stage("checking the result");
     if (!all_finite(r.emit))  // never a silent NaN: huge values overflow
@@ -156,7 +191,7 @@ Result run(const Args& a) {
     out.finish();
     if (!r.note.empty()) r.note = a.scene + ": " + r.note;
     return r;
-  } catch (const OutputError&) {
+  } catch (const FileError&) {  // an output, the trajectory: named already
     throw;
   } catch (const Error& e) {
     throw Error(a.scene + ": " + e.what());

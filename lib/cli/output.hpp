@@ -10,10 +10,17 @@
 
 namespace soa::cli {
 
+/// An error about a file other than the scene, whose message begins with that file or the
+/// option that names it ("traj.csv: line 3, column \"t\": ...", "--out view: ..."): it is
+/// reported as it is, without the scene's name in front.
+struct FileError : Error {
+  using Error::Error;
+};
+
 /// An output that could not be written: "--out traj.csv: No space left on device". Its
 /// message names the output, not the scene.
-struct OutputError : Error {
-  using Error::Error;
+struct OutputError : FileError {
+  using FileError::FileError;
 };
 
 /// Text to a file descriptor. The first \p hold bytes are kept back, so that an output of

@@ -18,6 +18,7 @@
 #include "output.hpp"
 #include "soa/chain.hpp"
 #include "soa/chain/operational_space.hpp"
+#include "trajectory.hpp"
 
 namespace soa::cli {
 namespace {
@@ -290,19 +291,10 @@ class StopSignals {
   }, old_term_{};
 };
 
-/// A CSV field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break,
-/// quotes doubled.
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (const char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 }  // namespace
 
 Result simulate(const Scene& scene, const State& x0, const SimulationOptions& opt_in,
-                const OutputOptions& out) {
+                const OutputOptions& out, const ViewOptions* view, const char* verb) {
   const Model& m = scene.model;
   const std::vector<int> qi = file_q_index(scene), vi = file_v_index(scene);
   ChainSystem sys(m, scene.f_ext);
@@ -311,18 +303,35 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   long rows = 0;
   if (!out.csv_path.empty()) {
     file = std::make_unique<OutputFile>(out.csv_path, "--out " + out.csv_path, scene.name);
-    line = "t";
-    for (int k : scene.file_order) {  // q names: "link1", or "ball[0]".."ball[3]"
-      const Body& B = m.body(k);
-      for (int i = 0; i < B.hinge.nq(); ++i)
-        line +=
-            "," +
-            csv_field("q:" + (B.hinge.nq() == 1 ? B.name : B.name + "[" + std::to_string(i) + "]"));
-    }
-    for (const std::string& n : column_names(scene)) line += "," + csv_field("qd:" + n);
-    line += ",energy,quaternion_norm_error\n";
+    for (const std::string& c : trajectory_columns(scene))
+      line += (line.empty() ? "" : ",") + csv_field(c);
+    line += "\n";
     file->sink().write(line.data(), line.size());
   }
+  // The fixed step as the run takes it: [0, T] divided evenly.
+  const double dt =
+      opt_in.method == Integrator::DormandPrince
+          ? 0.0
+          : opt_in.t_end /
+                std::max(1.0, std::ceil(double(opt_in.t_end) / double(opt_in.dt) - 1e-9));
+  std::unique_ptr<soa::view::Recorder> recorder;
+  std::string label;  // the viewer's run: "rk4, h = 0.001 s"
+  if (view) {
+    recorder =
+        std::make_unique<soa::view::Recorder>(scene, opt_in.t_end, view->frames, view->quantities);
+    label = std::string(integrator_name(opt_in.method)) +
+            (opt_in.method == Integrator::DormandPrince ? ", tol = " + num(opt_in.tol)
+                                                        : ", h = " + num(dt) + " s");
+  }
+  std::shared_ptr<const ViewWritten> written;
+  // The viewer of what was computed, the last state (at \p t) recorded whatever the budget.
+  auto write_viewer = [&](double t, const State& s, const std::string& why) {
+    recorder->record(t, s);
+    set_stage("writing the viewer");
+    written = std::make_shared<const ViewWritten>(
+        write_view(scene, *view, *recorder, label,
+                   why.empty() ? recorder->note() : recorder->note() + "; " + why));
+  };
   double written_t = -1;  // the time of the last row written
   auto write_row = [&](double t, const State& s) {
     char text[32];
@@ -355,6 +364,13 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   auto observe = [&](double t, const State& s) {
     ++step;
     last_t = t;
+    if (recorder) {
+      // The first call comes once soa::simulate() has checked the options: the folder is
+      // written with the starting state, so that one that cannot be used (not a viewer's,
+      // three.js missing) stops the command now, not after the run.
+      if (step == 0) write_start(scene, *view, s);
+      recorder->offer(t, s);
+    }
     if (file) {
       bool due = out.out_dt > 0 ? t >= next_out - 1e-9 * out.out_dt : step % out.every == 0;
       if (due) {
@@ -379,39 +395,57 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   SimulationSummary sum;
   try {
     sum = soa::simulate(sys, x, opt, observe);
-  } catch (const OutputError&) {
+  } catch (const FileError&) {  // an output, the viewer's folder
     clear_bar();
     throw;
   } catch (const Error& e) {
-    // A blow-up (or a singular D(k)) part way: the rows before it are kept, complete; x is
-    // the last accepted state.
+    // A blow-up (or a singular D(k)) part way: the rows before it are kept, complete, and
+    // the viewer of them written; x is the last accepted state.
     clear_bar();
-    if (!file || step < 0) throw;
-    if (written_t != last_t) write_row(last_t, x);
-    file->commit();
-    throw Error(std::string(e.what()) + "; the trajectory up to t = " + num(last_t) + " s (" +
-                std::to_string(rows) + " rows) is in " + out.csv_path);
+    if ((!file && !recorder) || step < 0) throw;
+    std::string kept;
+    if (file) {
+      if (written_t != last_t) write_row(last_t, x);
+      file->commit();
+      kept = "; the trajectory up to t = " + num(last_t) + " s (" + std::to_string(rows) +
+             " rows) is in " + out.csv_path;
+    }
+    if (recorder) {
+      write_viewer(last_t, x, "stopped by a blow-up after t = " + num(last_t) + " s");
+      const std::string frames = " (" + std::to_string(written->frames) + " frames)";
+      kept += file
+                  ? ", its viewer" + frames + " in " + view->dir
+                  : "; the viewer up to t = " + num(last_t) + " s" + frames + " is in " + view->dir;
+    }
+    throw Error(std::string(e.what()) + kept);
   }
   clear_bar();
   if (file) {
     if (written_t != sum.t) write_row(sum.t, x);
     file->commit();
   }
-  Result r;
   const int sig = sum.interrupted ? int(g_signal) : 0;
   const char* sig_name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+  if (recorder)
+    write_viewer(sum.t, x,
+                 sum.interrupted ? std::string("interrupted by ") + sig_name +
+                                       " at t = " + num(sum.t) + " s of " + num(opt.t_end)
+                                 : std::string());
+  Result r;
   if (sum.interrupted) {
     r.exit_code = 128 + sig;
-    r.note = std::string("simulate: interrupted by ") + sig_name + " at t = " + num(sum.t) +
-             " s, step " + std::to_string(sum.steps) + " of [0, " + num(opt.t_end) + "]" +
-             (file ? "; the trajectory up to there is in " + out.csv_path : std::string());
+    r.note =
+        std::string(verb) + ": interrupted by " + sig_name + " at t = " + num(sum.t) + " s, step " +
+        std::to_string(sum.steps) + " of [0, " + num(opt.t_end) + "]" +
+        (file ? "; the trajectory up to there is in " + out.csv_path : std::string()) +
+        (recorder ? std::string(file ? ", its viewer in " : "; the viewer up to there is in ") +
+                        view->dir
+                  : std::string());
   }
-  const double dt =
-      opt.method == Integrator::DormandPrince
-          ? 0.0
-          : opt.t_end / std::max(1.0, std::ceil(double(opt.t_end) / double(opt.dt) - 1e-9));
+  r.view = written;
+  r.summary = std::make_shared<const SimulationSummary>(sum);
   auto xf = std::make_shared<State>(std::move(x));
-  r.emit = [&scene, opt, sum, dt, xf, out, rows, sig_name](JsonWriter& w) {
+  r.emit = [&scene, opt, sum, dt, xf, out, rows, sig_name, written](JsonWriter& w) {
     w.begin_object();
     w.member("scene", scene.title);
     w.member("integrator", integrator_name(opt.method));
@@ -445,6 +479,12 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     if (!out.csv_path.empty()) {
       w.member("trajectory", out.csv_path);
       w.member("rows", rows);
+    }
+    if (written) {
+      w.key("view");
+      w.begin_object();
+      emit_view(w, *written);
+      w.end_object();
     }
     w.end_object();
   };

@@ -1,13 +1,17 @@
-// The six computations of `soa`, each from a scene and a state to a result that writes
+// The computations of `soa`, each from a scene and a state to a result that writes
 // itself as JSON (json_out.hpp). Everything is computed before the result is returned; the
 // result only formats it, in O(n) time and O(1) memory.
 #pragma once
 
+#include <cstddef>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "json_out.hpp"
 #include "soa/scene.hpp"
 #include "soa/sim.hpp"
+#include "soa/view.hpp"
 
 namespace soa::cli {
 
@@ -18,11 +22,35 @@ inline constexpr int kDenseCheckMax = 2000;
 /// limit) and its text (about 9 GB) are no longer a result anyone reads.
 inline constexpr int kMassMatrixMax = 20000;
 
+/// The most frames a viewer may hold (--frames): each holds every body's pose, V and f, 19
+/// numbers a body (50 bodies: 7.6 kB of memory and 11.5 kB of data.js a frame, 1.1 GB of
+/// data.js at the limit).
+inline constexpr std::size_t kMaxFrames = 100000;
+
+/// A viewer to write (view --out DIR, simulate --view DIR).
+struct ViewOptions {
+  std::string dir;     ///< the folder
+  std::string option;  ///< the option that named it, for messages: "--out" or "--view"
+  std::size_t frames = soa::view::kDefaultFrames;  ///< the budget of a run's frames
+  soa::view::Quantities quantities;                ///< V, f per frame
+};
+
+/// A viewer that was written.
+struct ViewWritten {
+  std::string folder, label, note;
+  std::size_t frames = 0;  ///< frames in data.js
+  long states = 0;         ///< states offered to the recorder (steps + 1, rows, 1)
+};
+
 /// What the verb wants printed, and how the program ends.
 struct Result {
   Emit emit;          ///< the JSON on stdout
   int exit_code = 0;  ///< 0, or 128 + the signal that interrupted a simulation
   std::string note;   ///< a line for stderr (an interrupted simulation), empty when none
+  /// The viewer written by simulate --view, view (null when none).
+  std::shared_ptr<const ViewWritten> view;
+  /// simulate: what the run did.
+  std::shared_ptr<const SimulationSummary> summary;
 };
 
 /// The frame of the body called \p name in \p scene; throws soa::Error("--body: ...").
@@ -54,11 +82,39 @@ struct OutputOptions {
 };
 
 /// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into
-/// out.csv_path, the summary as JSON. SIGINT and SIGTERM stop the run at a step boundary:
-/// the rows so far are kept, the summary says so, exit code 130 or 143. A run that blows up
-/// keeps the rows before the blow-up and its message says where they are.
+/// out.csv_path, the summary as JSON; with \p view, the run recorded into that viewer
+/// (written with the starting state once the run's options are checked, so that a folder
+/// that cannot be written stops the command before the run; then with the run's frames at
+/// the end). SIGINT and SIGTERM stop the run at a step boundary: the rows and the viewer so
+/// far are kept, the summary says so, exit code 130 or 143. A run that blows up keeps the
+/// rows and the viewer before the blow-up and its message says where they are. \p verb
+/// begins the note of an interruption.
 Result simulate(const Scene& scene, const State& x, const SimulationOptions& opt,
-                const OutputOptions& out);
+                const OutputOptions& out, const ViewOptions* view = nullptr,
+                const char* verb = "simulate");
+
+/// Writes the frames of \p rec, taken as the run \p label, into the viewer of \p scene in
+/// opt.dir (soa::view::write()), with \p note; its errors as FileError beginning with the
+/// option: "--view my_view: holds \"notes.txt\", which is not a file of the viewer; ...".
+ViewWritten write_view(const Scene& scene, const ViewOptions& opt, soa::view::Recorder& rec,
+                       const std::string& label, const std::string& note);
+
+/// The viewer of the state \p x at t = 0 (one frame) into opt.dir: a run's starting state,
+/// written to find out before the run whether the folder can be.
+void write_start(const Scene& scene, const ViewOptions& opt, const State& x);
+
+/// view: the viewer of \p scene into view.dir, from one of three sources: the state \p x
+/// (one frame; \p given_state says it came from --q, --qd), a run simulated from \p x with
+/// \p sim (as simulate does), or the trajectory file \p trajectory (read_trajectory(),
+/// decimated to the budget, its last row always kept). Nothing is written unless all is
+/// right (but for a simulation that blows up or is interrupted: see simulate()).
+Result view(const Scene& scene, const State& x, bool given_state, const ViewOptions& view,
+            const std::optional<SimulationOptions>& sim,
+            const std::optional<std::string>& trajectory);
+
+/// The members of a written viewer in a verb's JSON: folder, open (its index.html), run,
+/// frames, states, note.
+void emit_view(JsonWriter& w, const ViewWritten& v);
 
 /// The mass matrix in file order, with its symmetry and (up to kDenseCheckMax coordinates
 /// or with \p check) definiteness; with \p inverse, also its inverse by the O(N^2) algorithm

@@ -9,6 +9,9 @@
 ///   names that are not UTF-8; --every/--out-dt thin the trajectory;
 /// - the dense cross-checks are skipped above their size and say so; a mass matrix too
 ///   large is refused, and running out of memory is one line naming what was being built;
+/// - the viewer (view, simulate --view): a state, a run, a trajectory file read back (every
+///   bad one refused with its line and column, nothing written), a folder of the user's
+///   refused, a blow-up and Ctrl-C keep the viewer of what was computed;
 /// - each verb's --help lists only the options it takes.
 /// Suite cli_robustness.
 #include <fcntl.h>
@@ -19,6 +22,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -171,6 +175,36 @@ void expect_complete_rows(const std::string& csv, std::size_t min_rows) {
   }
 }
 
+/// The data of a viewer folder: data.js is `window.SOA_VIEW = {...};`.
+json view_data(const std::string& dir) {
+  const std::string text = read_file(dir + "/data.js");
+  const std::string head = "window.SOA_VIEW = ", tail = ";\n";
+  EXPECT_EQ(text.rfind(head, 0), 0u) << dir;
+  EXPECT_GE(text.size(), head.size() + tail.size()) << dir;
+  if (text.size() < head.size() + tail.size()) return json();
+  EXPECT_EQ(text.substr(text.size() - tail.size()), tail) << dir;
+  return json::parse(text.substr(head.size(), text.size() - head.size() - tail.size()));
+}
+
+/// True when \p a and \p b are the same JSON but for numbers within \p tol (relative to
+/// max(1, |a|, |b|)); the first difference is printed.
+bool near(const json& a, const json& b, double tol, const std::string& where = "") {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    if (std::abs(x - y) <= tol * std::max({1.0, std::abs(x), std::abs(y)})) return true;
+  } else if (a.type() == b.type() && (a.is_array() || a.is_object()) && a.size() == b.size()) {
+    for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
+      if ((a.is_object() && i.key() != j.key()) ||
+          !near(*i, *j, tol, where + "/" + (a.is_object() ? i.key() : "[]")))
+        return false;
+    return true;
+  } else if (a == b) {
+    return true;
+  }
+  ADD_FAILURE() << where << ": " << a.dump().substr(0, 200) << " vs " << b.dump().substr(0, 200);
+  return false;
+}
+
 /// A revolute chain of n bodies as scene JSON.
 std::string chain_scene(int n) {
   std::string s = "{\"gravity\": [0, 0, -9.81], \"bodies\": [\n";
@@ -249,8 +283,11 @@ TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
   for (const int sig : {SIGINT, SIGTERM}) {
     Scratch s;
     const std::string csv = s / "traj.csv";
-    const pid_t pid = start(s, {"simulate", scene_path("chain50.json"), "--dt", "1e-4", "--t-end",
-                                "1e6", "--out", csv});
+    // With --view for SIGINT: the viewer of the run so far is written too.
+    std::vector<std::string> args = {
+        "simulate", scene_path("chain50.json"), "--dt", "1e-4", "--t-end", "1e6", "--out", csv};
+    if (sig == SIGINT) args.insert(args.end(), {"--view", s / "view"});
+    const pid_t pid = start(s, args);
     // Wait until the run has written rows (its temporary file grows), then signal.
     const auto t0 = std::chrono::steady_clock::now();
     bool growing = false;
@@ -279,6 +316,15 @@ TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
     EXPECT_EQ(long(rows.size()) - 1, j["rows"].get<long>());
     EXPECT_EQ(std::stod(rows.back()[0]), t) << "the last row is the state at the stop";
     for (const std::string& f : s.files()) EXPECT_EQ(f.rfind(".traj", 0), std::string::npos) << f;
+    if (sig == SIGINT) {
+      EXPECT_NE(r.err.find(", its viewer in " + s / "view"), std::string::npos) << r.err;
+      const json v = view_data(s / "view");
+      EXPECT_NE(v["note"].get<std::string>().find("; interrupted by SIGINT at t = "),
+                std::string::npos)
+          << v["note"];
+      EXPECT_NEAR(v["runs"][0]["t"].back().get<double>(), t, 1e-8 * t);
+      EXPECT_EQ(j["view"]["frames"].get<std::size_t>(), v["runs"][0]["t"].size());
+    }
   }
 }
 
@@ -326,6 +372,34 @@ TEST(cli_robustness, NamesWithCommasQuotesAndLineBreaksSurviveTheCsv) {
   header.push_back("quaternion_norm_error");
   EXPECT_EQ(rows[0], header);
   EXPECT_EQ(json::parse(r.out)["columns"], json(names));
+  // ... and view --trajectory reads them back (quoted fields across lines), and names one in
+  // a message on one line.
+  const Outcome v = soa(s, {"view", s / "names.json", "--out", s / "v", "--trajectory", csv});
+  ASSERT_EQ(v.rc, 0) << v.err;
+  EXPECT_EQ(json::parse(v.out)["rows"], 3);
+  auto bad = rows;
+  bad[3][3] = "y";  // the last row's q of "two\nlines"; the header takes lines 1 to 3
+  std::string text;
+  for (const auto& row : bad) {
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string& f = row[c];
+      text += c ? "," : "";
+      if (f.find_first_of(",\"\n") == std::string::npos) {
+        text += f;
+        continue;
+      }
+      text += '"';
+      for (const char ch : f) text += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+      text += '"';
+    }
+    text += "\n";
+  }
+  write_file(s / "bad.csv", text);
+  const Outcome e =
+      soa(s, {"view", s / "names.json", "--out", s / "w", "--trajectory", s / "bad.csv"});
+  EXPECT_EQ(e.rc, 1);
+  expect_one_line(e);
+  EXPECT_EQ(e.err, s / "bad.csv" + ": line 6, column \"q:two\\nlines\": \"y\" is not a number\n");
 }
 
 // --- mass-matrix --operational (lesson 7, section 8) ---------------------------------------
@@ -490,13 +564,253 @@ TEST(cli_robustness, InputsThatAreNotSceneFilesAreRefusedPromptly) {
   EXPECT_EQ(dir.err, s.dir() + ": is a directory, not a scene file\n");
 }
 
+// --- the 3D viewer (issue 14) ----------------------------------------------------------
+
+TEST(cli_robustness, ViewOfAStateIsOneFrameAtThatState) {
+  // --q, --qd in file order reach the viewer: its poses are the kinematics verb's positions.
+  Scratch s;
+  const std::string scene = test_scene("every_hinge.json");
+  const std::vector<std::string> state = {
+      "--q", "0.3,0.7,0.2,-0.3,0.1,0.2,0.0,0.9746794,0,0,0.3826834,0.9238795,0.1,0.2,0.3", "--qd",
+      "0.2,-1.0,0.4,0.1,0.3,-0.2,0.5,0,0,0.2,1,0,0"};
+  std::vector<std::string> args = {"view", scene, "--out", s / "v"};
+  args.insert(args.end(), state.begin(), state.end());
+  const Outcome r = soa(s, args);
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["source"], "state");
+  EXPECT_EQ(j["run"], "state of --q, --qd");
+  EXPECT_EQ(j["frames"], 1);
+  EXPECT_EQ(j["open"], s / "v/index.html");
+  const json v = view_data(s / "v");
+  const json& run = v["runs"][0];
+  ASSERT_EQ(run["t"].size(), 1u);
+  EXPECT_TRUE(run.contains("V") && run.contains("f"));
+  args = {"kinematics", scene};
+  args.insert(args.end(), state.begin(), state.end());
+  const Outcome kin = soa(s, args);
+  ASSERT_EQ(kin.rc, 0) << kin.err;
+  const json bodies = json::parse(kin.out)["bodies"];
+  ASSERT_EQ(v["bodies"].size(), bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const std::string name = v["bodies"][i]["name"];
+    for (int c = 0; c < 3; ++c)  // data.js has 9 significant digits
+      EXPECT_NEAR(run["pose"][0][7 * i + c].get<double>(),
+                  bodies[name]["position"][c].get<double>(), 1e-8)
+          << name;
+  }
+  // --no-velocity, --no-force: the page gets poses only.
+  const Outcome bare = soa(s, {"view", scene, "--out", s / "v", "--no-velocity", "--no-force"});
+  ASSERT_EQ(bare.rc, 0) << bare.err;
+  const json b = view_data(s / "v");
+  EXPECT_FALSE(b["runs"][0].contains("V") || b["runs"][0].contains("f"));
+  EXPECT_EQ(b["runs"][0]["label"], "state of the scene");
+}
+
+TEST(cli_robustness, ViewOfATrajectoryFileIsTheViewOfTheRunThatWroteIt) {
+  // simulate --out --view and view --trajectory of its CSV: the same frames (quaternions
+  // included: the file's are renormalized as --q's are), at times that are rows of the file.
+  Scratch s;
+  const std::string scene = test_scene("every_hinge.json"), csv = s / "traj.csv";
+  const Outcome sim = soa(s, {"simulate", scene, "--dt", "0.01", "--t-end", "1", "--out", csv,
+                              "--view", s / "run", "--frames", "25"});
+  ASSERT_EQ(sim.rc, 0) << sim.err;
+  const json js = json::parse(sim.out);
+  EXPECT_EQ(js["view"]["frames"], 25);
+  EXPECT_EQ(js["view"]["states"], 101);
+  EXPECT_EQ(js["view"]["run"], "rk4, h = 0.01 s");
+  const Outcome r =
+      soa(s, {"view", scene, "--out", s / "file", "--trajectory", csv, "--frames", "25"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["source"], "trajectory");
+  EXPECT_EQ(j["rows"], 101);
+  EXPECT_EQ(j["states"], 101);
+  EXPECT_EQ(j["note"], "101 states shown as 25 frames (one every 41.7 ms)");
+  EXPECT_EQ(j["note"], js["view"]["note"]);
+  json from_run = view_data(s / "run"), from_file = view_data(s / "file");
+  EXPECT_EQ(from_file["runs"][0]["label"], "traj.csv");
+  from_run["runs"][0].erase("label");
+  from_file["runs"][0].erase("label");
+  // The same but for rounding: a renormalized quaternion may differ in its last bit, and
+  // forces that are zero in exact arithmetic show it (1e-13 N against 10 N).
+  EXPECT_TRUE(near(from_run, from_file, 1e-9));
+  std::vector<double> rows;
+  const auto csv_rows = parse_csv(read_file(csv));
+  for (std::size_t i = 1; i < csv_rows.size(); ++i) rows.push_back(std::stod(csv_rows[i][0]));
+  const json& t = from_file["runs"][0]["t"];
+  ASSERT_EQ(t.size(), 25u);
+  for (const json& ti : t) {
+    const double x = ti.get<double>();
+    EXPECT_TRUE(std::any_of(rows.begin(), rows.end(),
+                            [&](double row) { return std::abs(row - x) <= 1e-9; }))
+        << "frame at t = " << x << " is no row of the file";
+  }
+  EXPECT_EQ(t.back().get<double>(), rows.back()) << "the last row is always shown";
+}
+
+TEST(cli_robustness, ViewRefusesEveryBadTrajectoryWithItsLineAndColumnAndWritesNothing) {
+  Scratch s;
+  const std::string pendulum = scene_path("double_pendulum.json");
+  const std::string good = s / "good.csv";
+  ASSERT_EQ(soa(s, {"simulate", pendulum, "--dt", "0.01", "--t-end", "0.2", "--out", good}).rc, 0);
+  const std::string text = read_file(good);
+  std::vector<std::string> lines;  // the file's lines, without their "\n"
+  for (std::size_t a = 0, b; (b = text.find('\n', a)) != std::string::npos; a = b + 1)
+    lines.push_back(text.substr(a, b - a));
+  ASSERT_EQ(lines.size(), 22u);
+  ASSERT_EQ(lines[0], "t,q:upper,q:lower,qd:upper,qd:lower,energy,quaternion_norm_error");
+  auto field = [&](std::size_t line, std::size_t c) {
+    std::stringstream in(lines[line - 1]);
+    std::string f;
+    for (std::size_t i = 0; i <= c; ++i) std::getline(in, f, ',');
+    return f;
+  };
+  // The file with line \p line's field \p c (0 = t) replaced by \p value.
+  auto with = [&](std::size_t line, std::size_t c, const std::string& value) {
+    std::string out;
+    for (std::size_t l = 1; l <= lines.size(); ++l) {
+      std::string row = lines[l - 1];
+      if (l == line) {
+        std::size_t a = 0;
+        for (std::size_t i = 0; i < c; ++i) a = row.find(',', a) + 1;
+        row.replace(a, row.find(',', a) - a, value);
+      }
+      out += row + "\n";
+    }
+    return out;
+  };
+  const std::string header =
+      "the header soa simulate --out writes for double_pendulum.json: t, 2 q and 2 qd in the "
+      "scene's order, energy, quaternion_norm_error";
+  std::string short_row = text;
+  short_row.replace(short_row.find(",0.0\n", short_row.find(lines[3])), 4, "");
+  const std::string arm = s / "arm7.csv";
+  ASSERT_EQ(
+      soa(s, {"simulate", scene_path("arm7.json"), "--dt", "0.01", "--t-end", "0.02", "--out", arm})
+          .rc,
+      0);
+  struct Case {
+    std::string name, contents, message;  // message: after "<file>: "
+  };
+  const std::vector<Case> cases = {
+      {"header.csv", with(1, 2, "q:elbow"),
+       "line 1, column 3: \"q:elbow\", expected \"q:lower\" (" + header + ")"},
+      {"arm7.csv", read_file(arm),
+       "line 1, column 2: \"q:link1\", expected \"q:upper\" (" + header + ")"},
+      {"columns.csv", with(1, 6, "quaternion_norm_error,more"),
+       "line 1: 8 columns, expected 7 (" + header + ")"},
+      {"word.csv", with(17, 3, "abc"), "line 17, column \"qd:upper\": \"abc\" is not a number"},
+      {"nan.csv", with(5, 2, "nan"), "line 5, column \"q:lower\": \"nan\" is not a finite number"},
+      {"huge.csv", with(6, 4, "1e999"),
+       "line 6, column \"qd:lower\": \"1e999\" is not a finite number"},
+      {"empty-field.csv", with(7, 5, ""), "line 7, column \"energy\": is empty"},
+      {"time.csv", with(9, 0, field(8, 0)),
+       "line 9, column \"t\": \"" + field(8, 0) + "\" is not after the previous row's \"" +
+           field(8, 0) + "\" (times must increase)"},
+      {"negative.csv", with(2, 0, "-0.5"),
+       "line 2, column \"t\": \"-0.5\" is negative; a trajectory begins at t = 0 (or later)"},
+      {"short.csv", short_row, "line 4: 6 fields, where the header has 7"},
+      {"blank.csv", lines[0] + "\n" + lines[1] + "\n\n" + lines[2] + "\n",
+       "line 3: an empty line where a row of 7 numbers should be"},
+      {"empty.csv", "", "line 1: empty file, expected " + header},
+      {"header-only.csv", lines[0] + "\n", "line 2: no rows after the header"},
+      {"open-quote.csv", lines[0] + "\n\"0.0,1\n",
+       "line 2: a quoted field is not closed before "
+       "the end of the file"},
+  };
+  for (const Case& c : cases) {
+    const std::string file = s / c.name;
+    write_file(file, c.contents);
+    const Outcome r = soa(s, {"view", pendulum, "--out", s / "view", "--trajectory", file});
+    EXPECT_EQ(r.rc, 1) << c.name;
+    EXPECT_EQ(r.err, file + ": " + c.message + "\n") << c.name;
+    EXPECT_EQ(r.out, "") << c.name;
+    EXPECT_FALSE(fs::exists(s / "view")) << c.name << ": a folder written";
+  }
+  // A quaternion that is not of unit norm names its four columns; a file that is not there,
+  // or a folder.
+  const std::string eh = test_scene("every_hinge.json"), eh_csv = s / "eh.csv";
+  ASSERT_EQ(soa(s, {"simulate", eh, "--dt", "0.01", "--t-end", "0.03", "--out", eh_csv}).rc, 0);
+  auto rows = parse_csv(read_file(eh_csv));
+  const std::size_t ball = std::find(rows[0].begin(), rows[0].end(), "q:ball[0]") - rows[0].begin();
+  ASSERT_LT(ball + 3, rows[0].size());
+  for (int i = 0; i < 4; ++i) rows[3][ball + i] = i == 3 ? "2" : "0";
+  std::string bad;
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) bad += (i ? "," : "") + row[i];
+    bad += "\n";
+  }
+  write_file(s / "ball.csv", bad);
+  for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
+           {s / "ball.csv",
+            "line 4, columns \"q:ball[0]\" to \"q:ball[3]\": the quaternion of body \"ball\" is "
+            "not of unit norm (norm 2; the norm must be 1 within 1e-6)"},
+           {s / "no_such.csv", "cannot open the file (No such file or directory)"},
+           {s.dir(), "is a directory, not a trajectory file"}}) {
+    const Outcome r = soa(s, {"view", eh, "--out", s / "view", "--trajectory", file});
+    EXPECT_EQ(r.rc, 1) << file;
+    EXPECT_EQ(r.err, file + ": " + message + "\n");
+    EXPECT_FALSE(fs::exists(s / "view")) << file << ": a folder written";
+  }
+}
+
+TEST(cli_robustness, ViewRefusesAFolderThatHoldsAnythingElseAndNamesTheOption) {
+  Scratch s;
+  const std::string scene = scene_path("arm7.json"), dir = s / "mine";
+  fs::create_directory(dir);
+  write_file(dir + "/notes.txt", "mine\n");
+  const std::string why =
+      ": holds \"notes.txt\", which is not a file of the viewer; give a new folder, an empty "
+      "one, or one the viewer was written to before\n";
+  const Outcome v = soa(s, {"view", scene, "--out", dir});
+  EXPECT_EQ(v.rc, 1);
+  EXPECT_EQ(v.err, "--out " + dir + why);
+  // simulate --view: refused before the run, and the trajectory not written either.
+  const Outcome sim = soa(s, {"simulate", scene, "--dt", "0.01", "--t-end", "0.05", "--out",
+                              s / "traj.csv", "--view", dir});
+  EXPECT_EQ(sim.rc, 1);
+  EXPECT_EQ(sim.err, "--view " + dir + why);
+  EXPECT_EQ(sim.out, "");
+  std::vector<std::string> files = s.files();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"mine", "stderr.txt", "stdout.txt"}));
+  EXPECT_EQ(read_file(dir + "/notes.txt"), "mine\n");
+  // A viewer's folder is written again.
+  ASSERT_EQ(soa(s, {"view", scene, "--out", s / "v"}).rc, 0);
+  const Outcome again = soa(s, {"simulate", scene, "--dt", "0.01", "--view", s / "v"});
+  EXPECT_EQ(again.rc, 0) << again.err;
+  EXPECT_EQ(view_data(s / "v")["runs"][0]["label"], "rk4, h = 0.01 s");
+}
+
+TEST(cli_robustness, ViewOfARunThatBlowsUpShowsItUpToTheBlowUp) {
+  Scratch s;
+  const Outcome r = soa(s, {"view", test_scene("stiff_pendulum.json"), "--out", s / "v",
+                            "--integrator", "rk4", "--dt", "0.001", "--t-end", "1"});
+  EXPECT_EQ(r.rc, 1);
+  expect_one_line(r);
+  EXPECT_EQ(r.out, "");
+  const std::size_t at = r.err.find("; the viewer up to t = ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("frames) is in " + s / "v" + "\n", at), std::string::npos) << r.err;
+  const json v = view_data(s / "v");
+  EXPECT_NE(v["note"].get<std::string>().find("; stopped by a blow-up after t = "),
+            std::string::npos)
+      << v["note"];
+  double t_kept = 0;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + at, "; the viewer up to t = %lf", &t_kept), 1);
+  EXPECT_NEAR(v["runs"][0]["t"].back().get<double>(), t_kept, 1e-6);
+}
+
 // --- help -----------------------------------------------------------------------------
 
 TEST(cli_robustness, EachVerbsHelpListsOnlyItsOptions) {
   Scratch s;
   const std::vector<std::string> options = {
-      "--q",  "--qd",  "--qdd",   "--tau", "--body",  "--inverse", "--check",      "--integrator",
-      "--dt", "--tol", "--t-end", "--out", "--every", "--out-dt",  "--operational"};
+      "--q",       "--qd",     "--qdd",        "--tau",         "--body",
+      "--inverse", "--check",  "--integrator", "--dt",          "--tol",
+      "--t-end",   "--out",    "--every",      "--out-dt",      "--operational",
+      "--view",    "--frames", "--trajectory", "--no-velocity", "--no-force"};
   const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
       {"kinematics", {"--q", "--qd", "--qdd", "--body"}},
       {"jacobian", {"--q", "--body"}},
@@ -504,8 +818,11 @@ TEST(cli_robustness, EachVerbsHelpListsOnlyItsOptions) {
       {"forward-dynamics", {"--q", "--qd", "--tau", "--check"}},
       {"mass-matrix", {"--q", "--inverse", "--operational", "--check"}},
       {"simulate",
-       {"--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--out", "--every",
-        "--out-dt"}}};
+       {"--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--out", "--every", "--out-dt",
+        "--view", "--frames", "--no-velocity", "--no-force"}},
+      {"view",
+       {"--out", "--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--trajectory",
+        "--frames", "--no-velocity", "--no-force"}}};
   for (const auto& [verb, takes] : verbs) {
     const Outcome r = soa(s, {verb, "--help"});
     ASSERT_EQ(r.rc, 0);
