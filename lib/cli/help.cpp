@@ -273,9 +273,9 @@ are kept, the summary on stdout has "interrupted" with the time, a line on stder
 so, exit code 130 or 143 (a second Ctrl-C ends the program at once, without the file).
 --view DIR also writes the run's 3D viewer into the folder DIR (soa view --help): at most
 N frames (--frames N, 400 when absent), with each body's V and f unless --no-velocity,
---no-force. The folder is written with the starting state before the first step (a folder
-that cannot be used stops the command before the run), and with the run when it ends:
-blown up or interrupted included, the messages say so. On stdout, "view": the folder, its
+--no-force. The folder is checked before the first step (a folder that cannot be used
+stops the command before the run) and written when the run ends: blown up or interrupted
+included, the messages say so. On stdout, "view": the folder, its
 "open" (index.html), the frames and the "note". --view may go with --out.
 
 )") + state_help(Verb::Simulate) +
@@ -303,9 +303,9 @@ the library: per frame each body's pose, its spatial velocity V (--no-velocity l
 out) and the inter-body force f(k) at its hinge (--no-force), the energy, the tip.
 The folder is created; an existing one is used only when it holds nothing but a viewer's
 files (nothing of yours is replaced); the files appear when all are complete. A
-simulation writes the folder with its starting state before the first step (a folder
-that cannot be used stops the command before the run), then with the run when it ends,
-blown up or interrupted included (the messages say so).
+simulation checks the folder before the first step (a folder that cannot be used stops
+the command before the run) and writes it when the run ends, blown up or interrupted
+included (the messages say so).
 A trajectory is read and checked whole before anything is written: the header must be
 the one soa simulate --out writes for this scene (t, q: and qd: of every coordinate in
 file order, energy, quaternion_norm_error), then rows of finite numbers, times >= 0 that

@@ -365,10 +365,10 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     ++step;
     last_t = t;
     if (recorder) {
-      // The first call comes once soa::simulate() has checked the options: the folder is
-      // written with the starting state, so that one that cannot be used (not a viewer's,
-      // three.js missing) stops the command now, not after the run.
-      if (step == 0) write_start(scene, *view, s);
+      // The first call comes once soa::simulate() has checked the options: a folder that
+      // cannot be used (not a viewer's, three.js missing) stops the command now, not after
+      // the run, and nothing is written before the run ends.
+      if (step == 0) check_view_destination(*view);
       recorder->offer(t, s);
     }
     if (file) {

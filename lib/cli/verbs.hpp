@@ -83,9 +83,8 @@ struct OutputOptions {
 
 /// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into
 /// out.csv_path, the summary as JSON; with \p view, the run recorded into that viewer
-/// (written with the starting state once the run's options are checked, so that a folder
-/// that cannot be written stops the command before the run; then with the run's frames at
-/// the end). SIGINT and SIGTERM stop the run at a step boundary: the rows and the viewer so
+/// (its folder checked once the run's options are, so that one that cannot be written stops
+/// the command before the run; written with the run's frames at the end). SIGINT and SIGTERM stop the run at a step boundary: the rows and the viewer so
 /// far are kept, the summary says so, exit code 130 or 143. A run that blows up keeps the
 /// rows and the viewer before the blow-up and its message says where they are. \p verb
 /// begins the note of an interruption.
@@ -99,9 +98,9 @@ Result simulate(const Scene& scene, const State& x, const SimulationOptions& opt
 ViewWritten write_view(const Scene& scene, const ViewOptions& opt, soa::view::Recorder& rec,
                        const std::string& label, const std::string& note);
 
-/// The viewer of the state \p x at t = 0 (one frame) into opt.dir: a run's starting state,
-/// written to find out before the run whether the folder can be.
-void write_start(const Scene& scene, const ViewOptions& opt, const State& x);
+/// Throws the FileError write_view() would throw for opt.dir (a folder that is not a viewer's,
+/// three.js missing) without writing anything: checked before a run starts.
+void check_view_destination(const ViewOptions& opt);
 
 /// view: the viewer of \p scene into view.dir, from one of three sources: the state \p x
 /// (one frame; \p given_state says it came from --q, --qd), a run simulated from \p x with

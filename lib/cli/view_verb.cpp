@@ -40,12 +40,12 @@ ViewWritten write_view(const Scene& scene, const ViewOptions& opt, soa::view::Re
   return w;
 }
 
-void write_start(const Scene& scene, const ViewOptions& opt, const State& x) {
-  soa::view::Recorder rec(scene, 0.0, 2, opt.quantities);
-  rec.record(0.0, x);
-  write_view(scene, opt, rec, "start",
-             "the starting state: the run is not over (its frames replace this one when it "
-             "ends)");
+void check_view_destination(const ViewOptions& opt) {
+  try {
+    soa::view::check_destination(opt.dir);
+  } catch (const Error& e) {
+    throw FileError(named(opt, e.what()));
+  }
 }
 
 void emit_view(JsonWriter& w, const ViewWritten& v) {

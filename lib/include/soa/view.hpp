@@ -136,6 +136,10 @@ std::string decimation_note(long states, std::size_t frames, double interval);
 /// are build/three.min.js and examples/js/controls/OrbitControls.js in it.
 std::filesystem::path three_dir();
 
+/// Throws the soa::Error write() would throw for the folder \p dir or for three.js, touching
+/// nothing: a long run checks where its viewer goes before it starts.
+void check_destination(const std::filesystem::path& dir);
+
 /// Writes the page into the folder \p dir: index.html, viewer.js, viewer.css, data.js,
 /// three.min.js and OrbitControls.js (from Debian's libjs-three). The folder is created; an
 /// existing folder is refused unless it holds nothing but a viewer's files (so nothing of the

@@ -153,6 +153,14 @@ fs::path three_dir() {
   return fs::path(env && *env ? env : SOA_THREE_DIR);
 }
 
+void check_destination(const fs::path& dir) {
+  if (dir.empty()) throw Error("view: no folder to write the viewer to");
+  const fs::path three = three_dir();
+  read_three(three / "build" / "three.min.js");
+  read_three(three / "examples" / "js" / "controls" / "OrbitControls.js");
+  check_folder(dir);
+}
+
 void write(const View& view, const fs::path& dir) {
   // Everything that can be refused, before the folder is touched.
   if (dir.empty()) throw Error("view: no folder to write the viewer to");
