@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "checklist.hpp"
 #include "soa/view.hpp"
 
 namespace soa::lesson {
@@ -18,8 +19,7 @@ namespace soa::lesson {
 /// `paused=1&t=1.5&show=ellipsoids,fixed`. Returns false, with the reason in \p why, when
 /// the folder could not be written.
 inline bool write_viewer(const std::filesystem::path& out, const std::string& name,
-                         const soa::view::View& view, const std::string& query,
-                         std::string& why) {
+                         const soa::view::View& view, const std::string& query, std::string& why) {
   try {
     soa::view::write(view, out / name);
   } catch (const std::exception& e) {
@@ -42,6 +42,15 @@ inline bool write_viewer(const std::filesystem::path& out, const std::string& na
     return false;
   }
   return true;
+}
+
+/// write_viewer() as the lesson check "viewer written: <name>" (with the reason when it fails).
+inline bool check_viewer(Checklist& checks, const std::filesystem::path& out,
+                         const std::string& name, const soa::view::View& view,
+                         const std::string& query) {
+  std::string why;
+  const bool ok = write_viewer(out, name, view, query, why);
+  return checks.check("viewer written: " + name + (ok ? "" : " (" + why + ")"), ok);
 }
 
 }  // namespace soa::lesson
