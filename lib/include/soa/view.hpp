@@ -71,7 +71,7 @@ struct Run {
 /// Everything the page shows. Several runs of the same bodies are drawn side by side.
 struct View {
   std::string title;
-  std::string note;  ///< e.g. the decimation: "10001 steps shown as 401 frames"
+  std::string note;  ///< e.g. the decimation (Recorder::note()); "" for none
   Vec3<double> gravity{0, 0, 0};
   std::vector<Body> bodies;
   int tip_body = -1;                ///< index into bodies of the tip (-1: no tip path)
@@ -82,6 +82,9 @@ struct View {
 
 /// The bodies of a scene (file order, locked ones included), tip = the last body's far end.
 View view_of(const Scene& scene);
+
+/// The frame budget of a run the caller did not size: 400 frames.
+inline constexpr std::size_t kDefaultFrames = 400;
 
 /// What a recorder computes per frame beyond the poses.
 struct Quantities {
@@ -99,13 +102,15 @@ struct Quantities {
 class Recorder {
  public:
   /// Throws soa::Error for a \p t_end that is negative or not finite, or a \p budget below 2.
-  Recorder(const Scene& scene, double t_end, std::size_t budget = 400, Quantities q = {});
+  Recorder(const Scene& scene, double t_end, std::size_t budget = kDefaultFrames,
+           Quantities q = {});
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
   /// Offers the state at time \p t (every step may be offered; most are skipped).
   void offer(double t, const State& x);
-  /// Records the state at \p t whatever the budget (the final state).
+  /// Records the state at \p t whatever the budget (the final state; at the budget it takes
+  /// the last frame's place). The state of the last frame kept is not recorded twice.
   void record(double t, const State& x);
   /// The frames so far, as a run called \p label (they are moved out: a second take()
   /// returns only the frames recorded after the first).
@@ -121,11 +126,8 @@ class Recorder {
   Impl* impl_;
 };
 
-/// The frame budget of a run the caller did not size: 400 frames.
-inline constexpr std::size_t kDefaultFrames = 400;
-
-/// "10001 states shown as 400 frames (one every 25.1 ms)", or "all 51 states shown" when
-/// \p frames == \p states.
+/// "10001 states shown as 400 frames (one every 25.1 ms)", or "all 51 states shown" ("1
+/// state shown") when \p frames == \p states.
 std::string decimation_note(long states, std::size_t frames, double interval);
 
 /// Where three.min.js and OrbitControls.js are taken from: the environment variable

@@ -158,6 +158,7 @@ std::string Recorder::note() const {
 std::string decimation_note(long states, std::size_t frames, double interval) {
   char buf[160];
   if (states >= 0 && std::size_t(states) == frames) {
+    if (states == 1) return "1 state shown";
     std::snprintf(buf, sizeof buf, "all %ld states shown", states);
     return buf;
   }
