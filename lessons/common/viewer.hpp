@@ -44,6 +44,39 @@ inline bool write_viewer(const std::filesystem::path& out, const std::string& na
   return true;
 }
 
+/// A scene for a chain built in code (no locked bodies): its bodies in file order base first,
+/// at rest in the neutral configuration, so that soa::view::view_of() and
+/// soa::view::Recorder can draw it as they draw a scene file's chain.
+inline soa::Scene scene_of(const soa::Model& m, const std::string& title) {
+  soa::Scene s;
+  s.name = s.title = title;
+  s.model = m;
+  s.state = soa::State::rest(m);
+  s.beta_dot = soa::VecX<double>::Zero(m.nv());
+  for (int k = m.n(); k >= 1; --k) {
+    s.file_order.push_back(k);
+    soa::Scene::Frame F;
+    F.name = m.body(k).name;
+    F.k = k;
+    s.frames.push_back(F);
+  }
+  return s;
+}
+
+/// Makes the tip path that of \p point fixed in file body \p body: every frame's tip
+/// \f$p + \mathfrak q\, \text{point}\, \mathfrak q^{-1}\f$ from that body's pose (as the
+/// page computes it).
+inline void set_tip(soa::view::View& view, int body, const soa::Vec3<double>& point) {
+  view.tip_body = body;
+  view.tip_point = point;
+  for (soa::view::Run& run : view.runs)
+    for (soa::view::Frame& f : run.frames) {
+      const double* p = f.pose.data() + 7 * std::size_t(body);
+      const soa::UnitQuaternion q(soa::Vec3<double>(p[3], p[4], p[5]), p[6]);
+      f.tip = soa::Vec3<double>(p[0], p[1], p[2]) + q.rotate(point);
+    }
+}
+
 /// write_viewer() as the lesson check "viewer written: <name>" (with the reason when it fails).
 inline bool check_viewer(Checklist& checks, const std::filesystem::path& out,
                          const std::string& name, const soa::view::View& view,
