@@ -77,6 +77,26 @@ inline void set_tip(soa::view::View& view, int body, const soa::Vec3<double>& po
     }
 }
 
+/// The hinge forces that the inter-body forces of a viewer frame carry,
+/// \f$T(k) = H(k)\,f(k)\f$ (lesson 3's gather; without springs and dampers): for a revolute
+/// hinge \f$h^* N(k)\f$, for a prismatic one \f$h^* F(k)\f$, with the axis h and
+/// \f$f(k) = [N; F]\f$ in world axes; indexed as \f$\beta\f$. Other hinges are left at 0.
+inline soa::VecX<double> hinge_forces(const soa::Scene& scene, const soa::view::Frame& f) {
+  soa::VecX<double> T = soa::VecX<double>::Zero(scene.model.nv());
+  for (std::size_t b = 0; b < scene.frames.size(); ++b) {
+    const soa::Scene::Frame& F = scene.frames[b];
+    const soa::Body& B = scene.model.body(F.k);
+    const bool revolute = B.hinge.type == soa::HingeType::Revolute;
+    if (F.locked || !(revolute || B.hinge.type == soa::HingeType::Prismatic)) continue;
+    const double* p = f.pose.data() + 7 * b;  // O_k: position, quaternion
+    const soa::Vec3<double> h =
+        soa::UnitQuaternion(soa::Vec3<double>(p[3], p[4], p[5]), p[6]).rotate(B.hinge.axis);
+    const double* part = f.f.data() + 6 * b + (revolute ? 0 : 3);
+    T[B.v_offset] = h.dot(soa::Vec3<double>(part[0], part[1], part[2]));
+  }
+  return T;
+}
+
 /// write_viewer() as the lesson check "viewer written: <name>" (with the reason when it fails).
 inline bool check_viewer(Checklist& checks, const std::filesystem::path& out,
                          const std::string& name, const soa::view::View& view,
