@@ -125,8 +125,8 @@ double naive_quaternion_drift(const SpatialInertia& M, const FreeBodyState& x0, 
 /// angular momentum about C as they are): the position \f$l(I,x) - t\,v_C\f$, the attitude
 /// \f$\mathfrak q\f$, \f$V(x) = [\omega; v(x) - v_C]\f$ in world axes, and its kinetic
 /// energy \f$\tfrac12 V^* M(x) V\f$ (slide 72). The body (frame x, \p M_x, principal axes
-/// along the body axes, \p J_C diagonal) is drawn with its inertia ellipsoid; its segment is
-/// zero (a single body: nothing hangs on it). The fixed vector is the angular momentum about
+/// along the body axes, \p J_C diagonal) is drawn with its inertia ellipsoid and a rod from x
+/// through C to \f$2p(x)\f$ (a last body's segment). The fixed vector is the angular momentum about
 /// C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), at C. The tip is
 /// \p tip_point (body frame x).
 soa::view::View flip_view(const SpatialInertia& M_x, const Mat3& J_C, const Run& run,
@@ -141,6 +141,7 @@ soa::view::View flip_view(const SpatialInertia& M_x, const Mat3& J_C, const Run&
   b.name = "body";
   b.hinge = "free";
   b.com = p;
+  b.segment = 2 * p;
   b.mass = M_x.mass();
   for (int i = 0, j = 1, k = 2; i < 3; ++i, j = (i + 1) % 3, k = (i + 2) % 3) {
     const double d = J_C(j, j) + J_C(k, k) - J_C(i, i);  // a_i = sqrt(5 d / (2m))
