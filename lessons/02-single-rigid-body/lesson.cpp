@@ -118,17 +118,16 @@ double naive_quaternion_drift(const SpatialInertia& M, const FreeBodyState& x0, 
   return drift;
 }
 
-/// The 3D viewer of a run of the torque-free body (notes page "Viewing a chain in 3D"), one
-/// frame every \p every steps, seen from the inertial frame that moves with the centre of mass
-/// C at its initial velocity \f$v_C = {}^I v(C)(0)\f$ (torque-free, C moves uniformly, so
-/// in that frame C stands still; a Galilean change of frame leaves \f$\omega\f$ and the
-/// angular momentum about C as they are): the position \f$l(I,x) - t\,v_C\f$, the attitude
-/// \f$\mathfrak q\f$, \f$V(x) = [\omega; v(x) - v_C]\f$ in world axes, and its kinetic
-/// energy \f$\tfrac12 V^* M(x) V\f$ (slide 72). The body (frame x, \p M_x, principal axes
-/// along the body axes, \p J_C diagonal) is drawn with its inertia ellipsoid and a rod from x
-/// through C to \f$2p(x)\f$ (a last body's segment). The fixed vector is the angular momentum about
-/// C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), at C. The tip is
-/// \p tip_point (body frame x).
+/// The 3D viewer of a run of the torque-free body (\ref viewer), one frame every \p every steps,
+/// seen from the inertial frame that moves with the centre of mass C at its initial velocity \f$v_C
+/// = {}^I v(C)(0)\f$ (torque-free, C moves uniformly, so in that frame C stands still; a Galilean
+/// change of frame leaves \f$\omega\f$ and the angular momentum about C as they are): the position
+/// \f$l(I,x) - t\,v_C\f$, the attitude \f$\mathfrak q\f$, \f$V(x) = [\omega; v(x) - v_C]\f$ in
+/// world axes, and its kinetic energy \f$\tfrac12 V^* M(x) V\f$ (slide 72). The body (frame x,
+/// \p M_x, principal axes along the body axes, \p J_C diagonal) is drawn with its inertia ellipsoid
+/// and a rod from x through C to \f$2p(x)\f$ (a last body's segment). The fixed vector is the
+/// angular momentum about C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), at C. The
+/// tip is \p tip_point (body frame x).
 soa::view::View flip_view(const SpatialInertia& M_x, const Mat3& J_C, const Run& run,
                           std::size_t every, const Vec3& tip_point) {
   const Vec3 p = M_x.p();  // p(x) = l(x, C)
@@ -537,18 +536,16 @@ int main(int argc, char** argv) {
   /// ### The flip in 3D
   ///
   /// The viewer `l2_flip_view` (a folder of the output: open its `index.html` in a browser;
-  /// notes page "Viewing a chain in 3D") replays the x run, a frame every 25 ms: the body with
-  /// its inertia ellipsoid (\f$J_3 = J_1 + J_2\f$: a flat plate, its ellipsoid a disc), its
-  /// frame x and \f$V(x)\f$, and the angular momentum about C,
-  /// \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), an arrow fixed in space:
-  /// no torque acts, so it is conserved (checked on every frame, to the tolerance above) while
-  /// \f$\omega\f$ wanders in the body. The motion is seen from the frame that moves with C,
-  /// where C stands still. The tip path follows the point \f$p(x) + 0.4\,e_2\f$ m on the
-  /// intermediate axis. Since
-  /// \f$h(C)^* R\,e_2 = (J(C)\omega)^* e_2 = J_2\,\omega_2\f$, that point crosses the plane
-  /// through C normal to \f$h(C)\f$ exactly when \f$\omega_2\f$ changes sign: each flip is
-  /// the path jumping from one side of the plane to the other, as often in the viewer's frames
-  /// as \f$\omega_2\f$ changes sign in the run (checked).
+  /// \ref viewer) replays the x run, a frame every 25 ms: the body with its inertia ellipsoid
+  /// (\f$J_3 = J_1 + J_2\f$: a flat plate, its ellipsoid a disc), its frame x and \f$V(x)\f$, and
+  /// the angular momentum about C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), an
+  /// arrow fixed in space: no torque acts, so it is conserved (checked on every frame, to the
+  /// tolerance above) while \f$\omega\f$ wanders in the body. The motion is seen from the frame
+  /// that moves with C, where C stands still. The tip path follows the point \f$p(x) + 0.4\,e_2\f$
+  /// m on the intermediate axis. Since \f$h(C)^* R\,e_2 = (J(C)\omega)^* e_2 = J_2\,\omega_2\f$,
+  /// that point crosses the plane through C normal to \f$h(C)\f$ exactly when \f$\omega_2\f$
+  /// changes sign: each flip is the path jumping from one side of the plane to the other, as often
+  /// in the viewer's frames as \f$\omega_2\f$ changes sign in the run (checked).
   {
     const std::size_t every = 5;
     const Vec3 tip = p_body + 0.4 * Vec3::UnitY();

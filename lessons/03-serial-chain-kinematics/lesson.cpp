@@ -935,11 +935,10 @@ int main(int argc, char** argv) {
   checks.check("tool velocity R_F [J beta]_v = d/dt of the path (fd), all 201 samples", v_res,
                fd_tol(v_max + 1.0));
 
-  /// The same motion in 3D: the viewer `l3_arm7_view` (notes page "Viewing a chain in 3D")
-  /// draws the arm at 401 instants, 10 ms apart: the poses of every body, the gripper on its
-  /// locked hinge included, by the scatter recursion of section 5, \f$V(k)\f$ by that of
-  /// section 6 (in inertial axes), and the path of the tool frame's origin, that of
-  /// `l3_tip_path.csv` (checked).
+  /// The same motion in 3D: the viewer `l3_arm7_view` (\ref viewer) draws the arm at 401 instants,
+  /// 10 ms apart: the poses of every body, the gripper on its locked hinge included, by the scatter
+  /// recursion of section 5, \f$V(k)\f$ by that of section 6 (in inertial axes), and the path of
+  /// the tool frame's origin, that of `l3_tip_path.csv` (checked).
   {
     const int frames = 401;
     soa::view::Recorder rec(arm_scene, t_f, frames, {true, false});

@@ -836,15 +836,14 @@ int main(int argc, char** argv) {
   checks.check("figure written: l4_arm7_terms.png",
                soa::lesson::plot("l4_arm7_terms.gp", out, "l4_arm7_terms.png"));
 
-  /// The motion in 3D: the viewer `l4_arm7_view` (notes page "Viewing a chain in 3D") draws the
-  /// arm at the 401 instants, with \f$V(k)\f$ and the inter-body forces \f$f(k)\f$ of the
-  /// Newton-Euler inverse dynamics along this motion (at its own \f$\dot\beta\f$; moment
-  /// N and force F at each hinge \f$O_k\f$, in inertial axes). They carry the joint torques:
-  /// for a revolute hinge \f$T(k) = H(k) f(k) = h_k^* N(k)\f$, checked on every frame
-  /// against the torques above. The force on the first link holds up the whole arm, of weight
-  /// \f$g \sum_k m_k\f$, and accelerates it; each hinge further out carries less of the arm:
-  /// the largest \f$|F(k)|\f$ along the motion falls from the base to the flange (printed,
-  /// and checked).
+  /// The motion in 3D: the viewer `l4_arm7_view` (\ref viewer) draws the arm at the 401 instants,
+  /// with \f$V(k)\f$ and the inter-body forces \f$f(k)\f$ of the Newton-Euler inverse dynamics
+  /// along this motion (at its own \f$\dot\beta\f$; moment N and force F at each hinge \f$O_k\f$,
+  /// in inertial axes). They carry the joint torques: for a revolute hinge \f$T(k) = H(k) f(k) =
+  /// h_k^* N(k)\f$, checked on every frame against the torques above. The force on the first link
+  /// holds up the whole arm, of weight \f$g \sum_k m_k\f$, and accelerates it; each hinge further
+  /// out carries less of the arm: the largest \f$|F(k)|\f$ along the motion falls from the base to
+  /// the flange (printed, and checked).
   {
     soa::view::View view = soa::view::view_of(arm_scene);
     view.title = "7-joint arm (lesson 4): the inter-body forces along a joint motion";

@@ -854,15 +854,14 @@ int main(int argc, char** argv) {
     checks.check("figure written: l8_energy.png",
                  soa::lesson::plot("l8_energy.gp", out, "l8_energy.png"));
 
-    /// The h = 1 ms run in 3D: the viewer `l8_double_pendulum_view` (notes page "Viewing a
-    /// chain in 3D") draws it every 5 ms, with \f$V(k)\f$ and the inter-body forces
-    /// \f$f(k)\f$ of section 3 (inverse dynamics at the forward dynamics' \f$\dot\beta\f$),
-    /// and the path of the lower link's end. The hinges are free (\f$T = 0\f$): the moment
-    /// N(k) that each hinge passes on has no component along its axis,
-    /// \f$H(k) f(k) = T(k) = 0\f$ on every frame (checked). The motion is planar, normal to
-    /// the hinge axes, so N(k) has no other component either: the hinges pass on forces F(k)
-    /// only, N(k) = 0 to rounding (checked; the page would draw that rounding at full scale,
-    /// so the still image leaves f out). The energy of the frames stays within the bound above.
+    /// The h = 1 ms run in 3D: the viewer `l8_double_pendulum_view` (\ref viewer) draws it every 5
+    /// ms, with \f$V(k)\f$ and the inter-body forces \f$f(k)\f$ of section 3 (inverse dynamics at
+    /// the forward dynamics' \f$\dot\beta\f$), and the path of the lower link's end. The hinges are
+    /// free (\f$T = 0\f$): the moment N(k) that each hinge passes on has no component along its
+    /// axis, \f$H(k) f(k) = T(k) = 0\f$ on every frame (checked). The motion is planar, normal to
+    /// the hinge axes, so N(k) has no other component either: the hinges pass on forces F(k) only,
+    /// N(k) = 0 to rounding (checked; the page would draw that rounding at full scale, so the still
+    /// image leaves f out). The energy of the frames stays within the bound above.
     soa::view::View view = soa::view::view_of(pend);
     view.title = "Double pendulum released at rest (lesson 8)";
     view.note = rec.note();
