@@ -875,8 +875,7 @@ int main(int argc, char** argv) {
     }
     std::printf(" N\n");
     checks.check("viewer: the largest |F(k)| falls from the base to the flange", falls);
-    soa::lesson::check_viewer(checks, out, "l4_arm7_view", view,
-                              "paused=1&t=1.5&show=axes,f,tip");
+    soa::lesson::check_viewer(checks, out, "l4_arm7_view", view, "paused=1&t=1.5&show=axes,f,tip");
   }
 
   /// ## 11. The energy structure: the Coriolis matrix and the rate of the mass matrix
