@@ -27,7 +27,8 @@
 ///   measured order of convergence.
 ///
 /// Run it as `lesson02 OUTDIR`: it prints each check and writes `OUTDIR/l2_energy_error.csv`,
-/// `OUTDIR/l2_flip.csv` and the figures `l2_energy_error.png` and `l2_flip.png`.
+/// `OUTDIR/l2_flip.csv`, the figures `l2_energy_error.png` and `l2_flip.png`, and the 3D viewer
+/// of the flip, `OUTDIR/l2_flip_view/` (open its `index.html` in a browser).
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -41,6 +42,8 @@
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "soa/soa.hpp"
+#include "soa/view.hpp"
+#include "viewer.hpp"
 
 using soa::Acceleration;
 using soa::Force;
@@ -113,6 +116,64 @@ double naive_quaternion_drift(const SpatialInertia& M, const FreeBodyState& x0, 
     drift = std::max(drift, std::abs(s.q.norm() - 1));
   }
   return drift;
+}
+
+/// The 3D viewer of a run of the torque-free body (\ref viewer), one frame every \p every steps,
+/// seen from the inertial frame that moves with the centre of mass C at its initial velocity \f$v_C
+/// = {}^I v(C)(0)\f$ (torque-free, C moves uniformly, so in that frame C stands still; a Galilean
+/// change of frame leaves \f$\omega\f$ and the angular momentum about C as they are): the position
+/// \f$l(I,x) - t\,v_C\f$, the attitude \f$\mathfrak q\f$, \f$V(x) = [\omega; v(x) - v_C]\f$ in
+/// world axes, and its kinetic energy \f$\tfrac12 V^* M(x) V\f$ (slide 72). The body (frame x,
+/// \p M_x, principal axes along the body axes, \p J_C diagonal) is drawn with its inertia ellipsoid
+/// and a rod from x through C to \f$2p(x)\f$ (a last body's segment). The fixed vector is the
+/// angular momentum about C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), at C. The
+/// tip is \p tip_point (body frame x).
+soa::view::View flip_view(const SpatialInertia& M_x, const Mat3& J_C, const Run& run,
+                          std::size_t every, const Vec3& tip_point) {
+  const Vec3 p = M_x.p();  // p(x) = l(x, C)
+  const FreeBodyState& x0 = run.x.front();
+  const Vec3 C0 = x0.r + x0.q.rotate(p);
+  const Vec3 v_C = x0.q.rotate(Phi::translation(p).transpose_apply(x0.V).linear());
+  soa::view::View v;
+  v.title = "Dzhanibekov flip: a torque-free body spun about its intermediate axis";
+  soa::view::Body b;
+  b.name = "body";
+  b.hinge = "free";
+  b.com = p;
+  b.segment = 2 * p;
+  b.mass = M_x.mass();
+  for (int i = 0, j = 1, k = 2; i < 3; ++i, j = (i + 1) % 3, k = (i + 2) % 3) {
+    const double d = J_C(j, j) + J_C(k, k) - J_C(i, i);  // a_i = sqrt(5 d / (2m))
+    b.radii[i] = std::sqrt(std::max(0.0, 5 * d / (2 * b.mass)));
+  }
+  v.bodies.push_back(b);
+  v.tip_body = 0;
+  v.tip_point = tip_point;
+  const Vec3 h_C = x0.q.rotate(J_C * x0.V.angular());
+  v.fixed.push_back({"angular momentum about C", C0, h_C});
+  soa::view::Run r;
+  char label[64];
+  std::snprintf(label, sizeof label, "Lie-group RK4, h = %g s", run.h);
+  r.label = label;
+  for (std::size_t k = 0; k < run.x.size(); k += every) {
+    const FreeBodyState& x = run.x[k];
+    FreeBodyState rel = x;  // V(x) relative to the frame moving with C, body axes
+    rel.V = Velocity(x.V.angular(), x.V.linear() - x.q.conjugate().rotate(v_C));
+    soa::view::Frame f;
+    f.t = run.t(k);
+    f.energy = soa::kinetic_energy(M_x, rel);
+    const Vec3 l = x.r - f.t * v_C;
+    const Vec4 q = x.q.coeffs();
+    f.pose = {l[0], l[1], l[2], q[0], q[1], q[2], q[3]};
+    const Vec3 w = x.q.rotate(rel.V.angular()), vx = x.q.rotate(rel.V.linear());
+    f.V = {w[0], w[1], w[2], vx[0], vx[1], vx[2]};
+    f.tip = l + x.q.rotate(tip_point);
+    r.frames.push_back(std::move(f));
+  }
+  v.note = soa::view::decimation_note(long(run.x.size()), r.frames.size(), every * run.h) +
+           "; seen from the frame moving with the centre of mass";
+  v.runs.push_back(std::move(r));
+  return v;
 }
 
 /// The errors of one step size, as sections 7 and 8 measure them: the largest relative
@@ -471,6 +532,46 @@ int main(int argc, char** argv) {
   std::printf("  classical RK4 on q in R^4, h = 0.04 s: max ||q| - 1| = %.2e\n", drift_naive);
   checks.check("classical RK4 on q in R^4 leaves the unit sphere (> 1e6 eps)",
                drift_naive > 1e6 * eps);
+
+  /// ### The flip in 3D
+  ///
+  /// The viewer `l2_flip_view` (a folder of the output: open its `index.html` in a browser;
+  /// \ref viewer) replays the x run, a frame every 25 ms: the body with its inertia ellipsoid
+  /// (\f$J_3 = J_1 + J_2\f$: a flat plate, its ellipsoid a disc), its frame x and \f$V(x)\f$, and
+  /// the angular momentum about C, \f$h(C) = R\,J(C)\,\omega\f$ in world axes (slides 76-77), an
+  /// arrow fixed in space: no torque acts, so it is conserved (checked on every frame, to the
+  /// tolerance above) while \f$\omega\f$ wanders in the body. The motion is seen from the frame
+  /// that moves with C, where C stands still. The tip path follows the point \f$p(x) + 0.4\,e_2\f$
+  /// m on the intermediate axis. Since \f$h(C)^* R\,e_2 = (J(C)\omega)^* e_2 = J_2\,\omega_2\f$,
+  /// that point crosses the plane through C normal to \f$h(C)\f$ exactly when \f$\omega_2\f$
+  /// changes sign: each flip is the path jumping from one side of the plane to the other, as often
+  /// in the viewer's frames as \f$\omega_2\f$ changes sign in the run (checked).
+  {
+    const std::size_t every = 5;
+    const Vec3 tip = p_body + 0.4 * Vec3::UnitY();
+    const soa::view::View view = flip_view(body_x, J_body, run_x, every, tip);
+    const soa::view::FixedVector& h_C = view.fixed.front();
+    double h_C_change = 0;
+    for (std::size_t k = 0; k < run_x.x.size(); k += every) {
+      const FreeBodyState& x = run_x.x[k];
+      h_C_change = std::max(h_C_change, (x.q.rotate(J_body * x.V.angular()) - h_C.vector).norm());
+    }
+    checks.check("viewer: h(C) = R J(C) w of every frame = the fixed arrow (relative)",
+                 h_C_change / h_C.vector.norm(), tol_rk4);
+    int crossings = 0;
+    const auto side = [&](const soa::view::Frame& f) {
+      return (f.tip - h_C.origin).dot(h_C.vector) > 0;
+    };
+    const std::vector<soa::view::Frame>& frames = view.runs.front().frames;
+    for (std::size_t k = 1; k < frames.size(); ++k)
+      if (side(frames[k - 1]) != side(frames[k])) ++crossings;
+    std::printf("  viewer: %zu frames; the tip crosses the plane normal to h(C) %d times\n",
+                frames.size(), crossings);
+    checks.check("viewer: the tip crosses the plane normal to h(C) as often as w_2 changes sign",
+                 crossings == flips);
+    soa::lesson::check_viewer(checks, out, "l2_flip_view", view,
+                              "paused=1&t=9.5&show=ellipsoids,fixed,frames,tip,V");
+  }
 
   /// ## 8. The order of the method
   ///

@@ -22,8 +22,9 @@
 ///   matrices and read \f$V = \phi^* H^* \beta\f$ off the recursion;
 /// - write the Jacobian of a frame, \f$J = B^*\phi^*H^*\f$, and the \f$\dot J\beta\f$ term.
 ///
-/// Run it as `lesson03 OUTDIR`: it prints each check and writes `OUTDIR/l3_tip_path.csv` and
-/// the figures `l3_tip_path.png` and `l3_tip_velocity.png`.
+/// Run it as `lesson03 OUTDIR`: it prints each check and writes `OUTDIR/l3_tip_path.csv`,
+/// the figures `l3_tip_path.png` and `l3_tip_velocity.png`, and the 3D viewer of the arm's
+/// motion, `OUTDIR/l3_arm7_view/` (open its `index.html` in a browser).
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -41,6 +42,8 @@
 #include "soa/chain.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
+#include "soa/view.hpp"
+#include "viewer.hpp"
 
 namespace {
 
@@ -849,11 +852,12 @@ int main(int argc, char** argv) {
   checks.section("11. A 7-joint arm: the path of its tool");
   const std::string scene_path = std::string(SOA_LESSON_SOURCE_DIR) + "/scenes/arm7.json";
   soa::Model arm;
+  soa::Scene arm_scene;  // for the viewer: the file's bodies, the gripper included
   bool from_scene = false;
   if (std::filesystem::exists(scene_path)) {
     try {
-      const soa::Scene scene = soa::load_scene(scene_path);
-      arm = scene.model;
+      arm_scene = soa::load_scene(scene_path);
+      arm = arm_scene.model;
       from_scene = true;
     } catch (const soa::Error& e) {
       std::printf("  scene not read (%s): the arm is built in code\n", e.what());
@@ -861,7 +865,10 @@ int main(int argc, char** argv) {
   } else {
     std::printf("  %s not found: the arm is built in code\n", scene_path.c_str());
   }
-  if (!from_scene) arm = arm7_in_code();
+  if (!from_scene) {
+    arm = arm7_in_code();
+    arm_scene = soa::lesson::scene_of(arm, "7-joint arm");
+  }
   std::printf("  arm from %s: %d bodies, nq = %d, nv = %d\n",
               from_scene ? "scenes/arm7.json" : "code", arm.n(), arm.nq(), arm.nv());
   // Joint motion: every scalar hinge from the base out gets its entries of bend (theta_s)
@@ -927,6 +934,32 @@ int main(int argc, char** argv) {
   std::printf("  tool path length %.3f m, largest speed %.3f m/s\n", path_length, v_max);
   checks.check("tool velocity R_F [J beta]_v = d/dt of the path (fd), all 201 samples", v_res,
                fd_tol(v_max + 1.0));
+
+  /// The same motion in 3D: the viewer `l3_arm7_view` (\ref viewer) draws the arm at 401 instants,
+  /// 10 ms apart: the poses of every body, the gripper on its locked hinge included, by the scatter
+  /// recursion of section 5, \f$V(k)\f$ by that of section 6 (in inertial axes), and the path of
+  /// the tool frame's origin, that of `l3_tip_path.csv` (checked).
+  {
+    const int frames = 401;
+    soa::view::Recorder rec(arm_scene, t_f, frames, {true, false});
+    for (int i = 0; i < frames; ++i)
+      rec.offer(t_f * i / (frames - 1), arm_state(t_f * i / (frames - 1)));
+    soa::view::View view = soa::view::view_of(arm_scene);
+    view.title = "7-joint arm (lesson 3): poses and velocities along a joint motion";
+    view.note = rec.note();
+    view.runs.push_back(rec.take("the joint motion of section 11, 4 s"));
+    int tool_body = 0;  // the file body whose frame is O_1, where the tool frame F sits
+    while (arm_scene.frames[std::size_t(tool_body)].k != 1 ||
+           arm_scene.frames[std::size_t(tool_body)].locked)
+      ++tool_body;
+    soa::lesson::set_tip(view, tool_body, tool7.l());
+    double tip_gap = 0;
+    for (const soa::view::Frame& f : view.runs.front().frames)
+      tip_gap = std::max(tip_gap, (f.tip - tool_pose(f.t).l()).norm());
+    checks.check("viewer: its tip path is the tool path (m)", tip_gap, tol(64));
+    soa::lesson::check_viewer(checks, out, "l3_arm7_view", view,
+                              "paused=1&t=2&show=frames,axes,V,tip");
+  }
 
   const soa::State xs = arm_state(0.0);
   soa::update_phi(arm, xs.theta, wa);

@@ -27,8 +27,9 @@
 ///   operator form and show \f$\dot{\mathcal M} - 2\mathcal C_v\f$ skew-symmetric.
 ///
 /// Run it as `lesson04 OUTDIR`: it prints each check and writes the joint torques of a
-/// 7-joint arm along a motion (`l4_arm7_torques.csv`, `l4_arm7_terms.csv`) and their figures
-/// (`l4_arm7_torques.png`, `l4_arm7_terms.png`).
+/// 7-joint arm along a motion (`l4_arm7_torques.csv`, `l4_arm7_terms.csv`), their figures
+/// (`l4_arm7_torques.png`, `l4_arm7_terms.png`) and the 3D viewer of that motion with its
+/// inter-body forces, `OUTDIR/l4_arm7_view/` (open its `index.html` in a browser).
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -45,6 +46,8 @@
 #include "soa/chain/energy_structure.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
+#include "soa/view.hpp"
+#include "viewer.hpp"
 
 namespace {
 
@@ -148,8 +151,8 @@ Model arm7_in_code() {
 
 /// The 7-joint arm from its scene file (lesson 3), or from arm7_in_code() when the file does
 /// not load or has a hinge with \f$\dot\theta \ne \beta\f$ (section 10 needs
-/// \f$\dot\theta = \beta\f$).
-Model arm7(std::string& source) {
+/// \f$\dot\theta = \beta\f$); as a scene, for the viewer.
+soa::Scene arm7(std::string& source) {
   const std::string path = SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/arm7.json";
   try {
     soa::Scene scene = soa::load_scene(path);
@@ -157,13 +160,13 @@ Model arm7(std::string& source) {
     for (const Body& b : scene.model.bodies()) plain = plain && b.hinge.nq() == b.hinge.nv();
     if (plain) {
       source = "scene file lessons/03-serial-chain-kinematics/scenes/arm7.json";
-      return scene.model;
+      return scene;
     }
     source = "built in code (the scene file has a hinge with theta_dot != beta)";
   } catch (const std::exception& e) {
     source = std::string("built in code (") + e.what() + ")";
   }
-  return arm7_in_code();
+  return soa::lesson::scene_of(arm7_in_code(), "7-joint arm");
 }
 
 /// The hinge forces by the library's Newton–Euler inverse dynamics, soa::inverse_dynamics.
@@ -741,7 +744,8 @@ int main(int argc, char** argv) {
   /// \image html l4_arm7_terms.png "Joint 2 of the 7-joint arm: the parts of its torque" width=600px
   checks.section("10. A 7-joint arm along a motion");
   std::string arm_source;
-  const Model arm = arm7(arm_source);
+  const soa::Scene arm_scene = arm7(arm_source);
+  const Model& arm = arm_scene.model;
   const int na = arm.nv();
   std::printf("  the arm: %s; %d bodies, %d degrees of freedom, gravity %.2f m/s^2\n",
               arm_source.c_str(), arm.n(), na, arm.gravity.norm());
@@ -780,11 +784,16 @@ int main(int argc, char** argv) {
     const State s = arm_motion.state(t);
     return kinetic_energy(arm, s) + potential_energy(arm, s.theta);
   };
+  // The viewer's frames: every instant, with f(k) of this motion (its own beta_dot).
+  soa::view::Recorder rec(arm_scene, 4.0, 401);
+  std::vector<VecX> torques;
   for (int i = 0; i <= 400; ++i) {
     const double t = 0.01 * i;
     const State s = arm_motion.state(t);
     const VecX bd = arm_motion.beta_dot(t);
     const VecX Tt = inverse_dynamics(arm, s, bd);
+    rec.offer(t, s, bd);
+    torques.push_back(Tt);
     const VecX T_rest = inverse_dynamics(arm, State{s.theta, VecX::Zero(na)}, VecX::Zero(na));
     const VecX T_vel = inverse_dynamics(arm, s, VecX::Zero(na));
     const Operators op_t = Operators::build(arm, s);
@@ -826,6 +835,48 @@ int main(int argc, char** argv) {
                soa::lesson::plot("l4_arm7_torques.gp", out, "l4_arm7_torques.png"));
   checks.check("figure written: l4_arm7_terms.png",
                soa::lesson::plot("l4_arm7_terms.gp", out, "l4_arm7_terms.png"));
+
+  /// The motion in 3D: the viewer `l4_arm7_view` (\ref viewer) draws the arm at the 401 instants,
+  /// with \f$V(k)\f$ and the inter-body forces \f$f(k)\f$ of the Newton-Euler inverse dynamics
+  /// along this motion (at its own \f$\dot\beta\f$; moment N and force F at each hinge \f$O_k\f$,
+  /// in inertial axes). They carry the joint torques: for a revolute hinge \f$T(k) = H(k) f(k) =
+  /// h_k^* N(k)\f$, checked on every frame against the torques above. The force on the first link
+  /// holds up the whole arm, of weight \f$g \sum_k m_k\f$, and accelerates it; each hinge further
+  /// out carries less of the arm: the largest \f$|F(k)|\f$ along the motion falls from the base to
+  /// the flange (printed, and checked).
+  {
+    soa::view::View view = soa::view::view_of(arm_scene);
+    view.title = "7-joint arm (lesson 4): the inter-body forces along a joint motion";
+    view.note = rec.note();
+    view.runs.push_back(rec.take("inverse dynamics along the motion of section 10"));
+    double T_gap = 0, T_scale = 0;
+    const std::vector<soa::view::Frame>& frames = view.runs.front().frames;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      T_gap = std::max(
+          T_gap,
+          (soa::lesson::hinge_forces(arm_scene, frames[i]) - torques[i]).lpNorm<Eigen::Infinity>());
+      for (double fi : frames[i].f) T_scale = std::max(T_scale, std::abs(fi));
+    }
+    checks.check("viewer: T(k) = H(k) f(k) from its forces, every frame and hinge", T_gap,
+                 64 * kEps * T_scale);
+    double weight = 0;
+    for (const Body& B : arm.bodies()) weight += B.M.mass() * arm.gravity.norm();
+    std::printf("  weight of the arm %.1f N; largest |F(k)| along the motion, base first:", weight);
+    bool falls = true;
+    double previous = INFINITY;
+    for (std::size_t b = 0; b < arm_scene.frames.size(); ++b) {
+      if (arm_scene.frames[b].locked) continue;
+      double largest = 0;
+      for (const soa::view::Frame& f : frames)
+        largest = std::max(largest, Vec3(f.f[6 * b + 3], f.f[6 * b + 4], f.f[6 * b + 5]).norm());
+      std::printf(" %.1f", largest);
+      falls = falls && largest < previous;
+      previous = largest;
+    }
+    std::printf(" N\n");
+    checks.check("viewer: the largest |F(k)| falls from the base to the flange", falls);
+    soa::lesson::check_viewer(checks, out, "l4_arm7_view", view, "paused=1&t=1.5&show=axes,f,tip");
+  }
 
   /// ## 11. The energy structure: the Coriolis matrix and the rate of the mass matrix
   ///

@@ -25,8 +25,10 @@
 ///   dense operator form and the round trip through inverse dynamics, and integrate it.
 ///
 /// Run it as `lesson08 OUTDIR`: it prints each check and writes a 2 s simulation of the
-/// double pendulum (`l8_double_pendulum.csv`, `l8_energy.csv`) and its figures
-/// (`l8_double_pendulum.png`, `l8_energy.png`).
+/// double pendulum (`l8_double_pendulum.csv`, `l8_energy.csv`), its figures
+/// (`l8_double_pendulum.png`, `l8_energy.png`), and the 3D viewers of the double pendulum and
+/// of the 50-link chain falling, `OUTDIR/l8_double_pendulum_view/` and
+/// `OUTDIR/l8_chain50_view/` (open their `index.html` in a browser).
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -44,6 +46,8 @@
 #include "soa/chain.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
+#include "soa/view.hpp"
+#include "viewer.hpp"
 
 namespace {
 
@@ -353,6 +357,26 @@ struct Integrator {
     x.beta += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
   }
 };
+
+/// The largest hinge force that the inter-body forces of a run's frames carry,
+/// \f$|T(k)| = |H(k) f(k)|\f$, relative to the largest \f$|f(k)|\f$: zero (to rounding) for
+/// a chain released with \f$T = 0\f$.
+double largest_hinge_force(const soa::Scene& scene, const soa::view::Run& run) {
+  double T = 0, f = 1e-300;
+  for (const soa::view::Frame& fr : run.frames) {
+    T = std::max(T, soa::lesson::hinge_forces(scene, fr).lpNorm<Eigen::Infinity>());
+    for (double fi : fr.f) f = std::max(f, std::abs(fi));
+  }
+  return T / f;
+}
+
+/// The largest \f$|E - E_0|/|E_0|\f$ over a run's frames.
+double energy_drift(const soa::view::Run& run) {
+  const double E0 = run.frames.front().energy;
+  double d = 0;
+  for (const soa::view::Frame& fr : run.frames) d = std::max(d, std::abs(fr.energy - E0));
+  return d / std::abs(E0);
+}
 
 }  // namespace
 
@@ -778,6 +802,7 @@ int main(int argc, char** argv) {
     std::vector<double> worst_E(steps.size(), 0.0);
     std::ofstream csv_q(out / "l8_double_pendulum.csv");
     csv_q << "t,upper (hinge 2),lower (hinge 1)\n";
+    soa::view::Recorder rec(pend, t_end, 401);  // the h = 1 ms run, every 5 ms
     for (std::size_t s = 0; s < steps.size(); ++s) {
       Integrator rk4(mp);
       State xs = x0;
@@ -795,6 +820,7 @@ int main(int argc, char** argv) {
             csv_q << line;
           }
         }
+        if (s + 1 == steps.size()) rec.offer(i * steps[s], xs);
         if (i < n_steps) rk4.step(xs, steps[s]);
       }
       std::printf("  h = %.3f s: %4d steps, max |E - E0|/|E0| = %.3e\n", steps[s], n_steps,
@@ -827,6 +853,63 @@ int main(int argc, char** argv) {
                  soa::lesson::plot("l8_double_pendulum.gp", out, "l8_double_pendulum.png"));
     checks.check("figure written: l8_energy.png",
                  soa::lesson::plot("l8_energy.gp", out, "l8_energy.png"));
+
+    /// The h = 1 ms run in 3D: the viewer `l8_double_pendulum_view` (\ref viewer) draws it every 5
+    /// ms, with \f$V(k)\f$ and the inter-body forces \f$f(k)\f$ of section 3 (inverse dynamics at
+    /// the forward dynamics' \f$\dot\beta\f$), and the path of the lower link's end. The hinges are
+    /// free (\f$T = 0\f$): the moment N(k) that each hinge passes on has no component along its
+    /// axis, \f$H(k) f(k) = T(k) = 0\f$ on every frame (checked). The motion is planar, normal to
+    /// the hinge axes, so N(k) has no other component either: the hinges pass on forces F(k) only,
+    /// N(k) = 0 to rounding (checked; the page would draw that rounding at full scale, so the still
+    /// image leaves f out). The energy of the frames stays within the bound above.
+    soa::view::View view = soa::view::view_of(pend);
+    view.title = "Double pendulum released at rest (lesson 8)";
+    view.note = rec.note();
+    view.runs.push_back(rec.take("RK4, h = 1 ms"));
+    const soa::view::Run& run = view.runs.front();
+    checks.check("viewer: H(k) f(k) = T(k) = 0 at the free hinges (/ max |f|)",
+                 largest_hinge_force(pend, run), 64 * kEps);
+    double N = 0, F = 0;
+    for (const soa::view::Frame& fr : run.frames)
+      for (std::size_t i = 0; i < fr.f.size(); ++i)
+        (i % 6 < 3 ? N : F) = std::max(i % 6 < 3 ? N : F, std::abs(fr.f[i]));
+    checks.check("viewer: planar motion, N(k) = 0 (/ max |F| x 1 m)", N / F, 64 * kEps);
+    checks.check("viewer: energy of its frames conserved to 1e-8 (relative)", energy_drift(run),
+                 1e-8);
+    soa::lesson::check_viewer(checks, out, "l8_double_pendulum_view", view,
+                              "paused=1&t=0.8&show=frames,axes,V,tip");
+  }
+
+  /// The 50-link chain of lesson 3 falls from the state its scene file gives (\f$T = 0\f$,
+  /// RK4 with h = 1 ms, as above) for 3 s: the viewer `l8_chain50_view` keeps 201 of its 3001
+  /// states, with \f$V(k)\f$, \f$f(k)\f$ and the path of its free end. Here too
+  /// \f$H(k) f(k) = 0\f$ at every hinge (checked), and the energy is kept to the error of RK4
+  /// at this step, larger than the double pendulum's: the light links at the end whip round
+  /// fast (checked below \f$10^{-4}\f$, relative).
+  try {
+    const soa::Scene chain = scene("chain50");
+    const double t_end = 3.0, h = 1e-3;
+    const int n_steps = int(std::lround(t_end / h));
+    soa::view::Recorder rec(chain, t_end, 201);
+    Integrator rk4(chain.model);
+    State xs = chain.state;
+    for (int i = 0; i <= n_steps; ++i) {
+      rec.offer(i * h, xs);
+      if (i < n_steps) rk4.step(xs, h);
+    }
+    soa::view::View view = soa::view::view_of(chain);
+    view.title = "50-link chain falling from its scene state (lesson 8)";
+    view.note = rec.note();
+    view.runs.push_back(rec.take("RK4, h = 1 ms"));
+    const soa::view::Run& run = view.runs.front();
+    std::printf("  chain50: %zu frames of %d states\n", run.frames.size(), n_steps + 1);
+    checks.check("chain50 viewer: H(k) f(k) = T(k) = 0 at the free hinges (/ max |f|)",
+                 largest_hinge_force(chain, run), 64 * kEps);
+    checks.check("chain50 viewer: energy of its frames conserved to 1e-4 (relative)",
+                 energy_drift(run), 1e-4);
+    soa::lesson::check_viewer(checks, out, "l8_chain50_view", view, "paused=1&t=1&show=V,f,tip");
+  } catch (const std::exception& e) {
+    checks.check(std::string("chain50.json loads (") + e.what() + ")", false);
   }
 
   /// What the numbers say. The three sweeps cost a fixed number of 6x6 and 6-vector

@@ -127,6 +127,78 @@ TEST(view_recorder, ForcesAreTheInverseDynamicsOfTheSimulatedMotion) {
   EXPECT_LE(hinge.value(), 1e4);
 }
 
+// Along a prescribed motion (lesson 4) f(k) is the inverse dynamics at the motion's own
+// beta_dot, whatever the forward dynamics would give; the poses, V and the energy are those of
+// the state alone; at the forward dynamics' beta_dot it is the simulated motion's frame.
+TEST(view_recorder, ForcesOfAPrescribedMotionAreInverseDynamicsAtItsBetaDot) {
+  Random<double> rnd;
+  Worst err("f vs inverse dynamics at the given beta_dot (rel, eps)");
+  for_random_states(rnd, [&](const Scene& s, const State& x, int c) {
+    const Model& m = s.model;
+    const VecX<double> bd = random_vector(rnd, m.nv());
+    view::Recorder rec(s, 1.0, 2);
+    rec.record(0, x, bd);
+    const view::Frame fr = rec.take("prescribed").frames.at(0);
+    const view::Frame free = frame_of(s, x);
+    EXPECT_EQ(fr.pose, free.pose);
+    EXPECT_EQ(fr.V, free.V);
+    EXPECT_EQ(fr.energy, free.energy);
+    ASSERT_EQ(fr.f.size(), 6 * s.frames.size());
+    Workspace ws(m);
+    VecX<double> T(m.nv());
+    inverse_dynamics(m, x, bd, s.f_ext, ws, T);
+    update_poses(m, ws);
+    for (std::size_t i = 0; i < s.frames.size(); ++i) {
+      const Scene::Frame& F = s.frames[i];
+      if (F.locked) {
+        EXPECT_EQ(part(fr.f, i, 0), Vec3<double>::Zero());
+        EXPECT_EQ(part(fr.f, i, 1), Vec3<double>::Zero());
+        continue;
+      }
+      const Mat3<double>& R = ws.pose[F.k - 1].R();
+      const Force& f = ws.f[F.k - 1];
+      err.add(std::max(rel(part(fr.f, i, 0), Vec3<double>(R * f.angular())),
+                       rel(part(fr.f, i, 1), Vec3<double>(R * f.linear()))) /
+                  eps<double>(),
+              c);
+    }
+    // At the forward dynamics' beta_dot: the frame of the simulated motion.
+    ChainSystem sys(m, s.f_ext);
+    VecX<double> bd_fd(m.nv());
+    sys.acceleration(0, x, bd_fd);
+    view::Recorder rec_fd(s, 1.0, 2);
+    rec_fd.record(0, x, bd_fd);
+    EXPECT_EQ(rec_fd.take("fd").frames.at(0).f, free.f);
+  });
+  EXPECT_LE(err.value(), 0);  // the same computation
+}
+
+// offer(t, x, beta_dot) keeps the same frames as offer(t, x); a beta_dot of the wrong size is
+// refused before anything is recorded.
+TEST(view_recorder, PrescribedMotionIsDecimatedAlikeAndSized) {
+  const Scene s = load_scene(kEveryHinge);
+  const VecX<double> bd = VecX<double>::Zero(s.model.nv());
+  view::Recorder a(s, 1, 7, {false, true}), b(s, 1, 7, {false, true});
+  for (long i = 0; i <= 100; ++i) a.offer(double(i) * 0.013, s.state, bd);
+  for (long i = 0; i <= 100; ++i) b.offer(double(i) * 0.013, s.state);
+  a.record(1.3, s.state, bd);
+  b.record(1.3, s.state);
+  std::vector<double> ta, tb;
+  for (const view::Frame& f : a.take("a").frames) ta.push_back(f.t);
+  for (const view::Frame& f : b.take("b").frames) tb.push_back(f.t);
+  EXPECT_EQ(ta, tb);
+  EXPECT_EQ(a.offered(), b.offered());
+  const VecX<double> wrong = VecX<double>::Zero(s.model.nv() + 1);
+  const std::string msg = "view: beta_dot has " + std::to_string(s.model.nv() + 1) +
+                          " entries, the chain has " + std::to_string(s.model.nv()) +
+                          " degrees of freedom";
+  view::Recorder c(s, 1, 7);
+  EXPECT_EQ(error_of([&] { c.offer(0, s.state, wrong); }), msg);
+  EXPECT_EQ(error_of([&] { c.record(0, s.state, wrong); }), msg);
+  EXPECT_EQ(c.offered(), 0);
+  EXPECT_EQ(c.kept(), 0u);
+}
+
 TEST(view_recorder, EnergyIsTheChainSystemsEnergy) {
   Random<double> rnd;
   for_random_states(rnd, [&](const Scene& s, const State& x, int) {

@@ -97,8 +97,9 @@ struct Quantities {
 /// Per frame, from the scene's model (lessons 3-4): the poses by update_poses(), \f$V(k)\f$ by
 /// update_velocities(), \f$f(k)\f$ by inverse_dynamics() at the accelerations
 /// \f$\dot\beta\f$ of the forward dynamics (ChainSystem, the scene's external forces and
-/// springs, no hinge forces), the energy by ChainSystem::energy(). Keeps a reference to
-/// \p scene, which must outlive it. Only the frames kept cost anything.
+/// springs, no hinge forces), or at the \f$\dot\beta\f$ given with the state (a prescribed
+/// motion: lesson 4's inverse dynamics along it), the energy by ChainSystem::energy(). Keeps a
+/// reference to \p scene, which must outlive it. Only the frames kept cost anything.
 class Recorder {
  public:
   /// Throws soa::Error for a \p t_end that is negative or not finite, or a \p budget below 2.
@@ -112,6 +113,12 @@ class Recorder {
   /// Records the state at \p t whatever the budget (the final state; at the budget it takes
   /// the last frame's place). The state of the last frame kept is not recorded twice.
   void record(double t, const State& x);
+  /// offer() for a prescribed motion: \f$f(k)\f$ by inverse dynamics at its own
+  /// \p beta_dot, not the forward dynamics'. Throws soa::Error when \p beta_dot does not have
+  /// the chain's nv entries.
+  void offer(double t, const State& x, const VecX<double>& beta_dot);
+  /// record() for a prescribed motion, as offer(t, x, beta_dot).
+  void record(double t, const State& x, const VecX<double>& beta_dot);
   /// The frames so far, as a run called \p label (they are moved out: a second take()
   /// returns only the frames recorded after the first).
   Run take(const std::string& label);

@@ -7,13 +7,16 @@
 //   V      \f$V(F) = \phi^*(O_k, F)\, V(k)\f$ (slide 41), \f$V(k) = [\omega; v]\f$ at
 //          \f$O_k\f$ from update_velocities(), then both parts turned by \f${}^I R_F\f$;
 //   f      the inter-body force \f$f(k)\f$ on body k at \f$O_k\f$ from inverse_dynamics() at
-//          the forward dynamics' \f$\dot\beta\f$, turned by \f${}^I R_{O_k}\f$ (zero for a
-//          locked body: nothing is transmitted through its hinge apart from body k's motion).
+//          the forward dynamics' \f$\dot\beta\f$ (or the caller's, for a prescribed motion),
+//          turned by \f${}^I R_{O_k}\f$ (zero for a locked body: nothing is transmitted
+//          through its hinge apart from body k's motion).
 // f(k) does not depend on the hinge forces T (they only enter \f$T = H f - \tau_s\f$), so it
 // is the force of the simulated motion whenever \f$\dot\beta\f$ is: ChainSystem's forward
-// dynamics with the scene's external forces, springs and dampers.
+// dynamics with the scene's external forces, springs and dampers; along a prescribed motion
+// (lesson 4) it is the force of that motion's own \f$\dot\beta\f$.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "detail.hpp"
 #include "soa/sim/chain_system.hpp"
@@ -40,8 +43,11 @@ struct Recorder::Impl {
   /// The time of sample j: j t_end / (budget - 1).
   double target(std::size_t j) const { return double(j) * interval; }
 
-  /// Appends (or, at the budget, replaces the last frame with) the frame of state \p x.
-  void capture(double t, const State& x);
+  /// Appends (or, at the budget, replaces the last frame with) the frame of state \p x;
+  /// \p given: the motion's \f$\dot\beta\f$, or null for the forward dynamics'.
+  void capture(double t, const State& x, const VecX<double>* given);
+  void offer(double t, const State& x, const VecX<double>* given);
+  void record(double t, const State& x, const VecX<double>* given);
 
   const Scene& scene;
   const std::size_t budget;
@@ -58,7 +64,7 @@ struct Recorder::Impl {
   Run run;
 };
 
-void Recorder::Impl::capture(double t, const State& x) {
+void Recorder::Impl::capture(double t, const State& x, const VecX<double>* given) {
   const Model& m = scene.model;
   const std::size_t nb = scene.frames.size();
   Frame fr;
@@ -84,8 +90,9 @@ void Recorder::Impl::capture(double t, const State& x) {
     if (i + 1 == nb) fr.tip = pose.apply(tip_point);
   }
   if (q.force) {
-    sys.acceleration(t, x, beta_dot);
-    inverse_dynamics(m, x, beta_dot, scene.f_ext, ws, T);  // ws.f; ws.pose is left as it was
+    if (!given) sys.acceleration(t, x, beta_dot);
+    // ws.f; ws.pose is left as it was
+    inverse_dynamics(m, x, given ? *given : beta_dot, scene.f_ext, ws, T);
     fr.f.assign(6 * nb, 0.0);
     for (std::size_t i = 0; i < nb; ++i) {
       const Scene::Frame& F = scene.frames[i];
@@ -115,23 +122,46 @@ Recorder::~Recorder() {
   delete impl_;
 }
 
-void Recorder::offer(double t, const State& x) {
-  Impl& r = *impl_;
-  ++r.offered;
-  r.last_offered = t;
-  if (r.next >= r.budget || t < r.target(r.next) - r.slack) return;
-  r.capture(t, x);
+void Recorder::Impl::offer(double t, const State& x, const VecX<double>* given) {
+  ++offered;
+  last_offered = t;
+  if (next >= budget || t < target(next) - slack) return;
+  capture(t, x, given);
   // Past every sample this state stood for (steps longer than the interval skip some).
-  while (r.next < r.budget && r.target(r.next) - r.slack <= t) ++r.next;
+  while (next < budget && target(next) - slack <= t) ++next;
 }
 
+void Recorder::Impl::record(double t, const State& x, const VecX<double>* given) {
+  if (!run.frames.empty() && run.frames.back().t == t) return;  // offered and kept
+  if (t != last_offered) ++offered;  // else offered and skipped: counted already
+  last_offered = t;
+  capture(t, x, given);
+  while (next < budget && target(next) - slack <= t) ++next;
+}
+
+namespace {
+
+/// Refuses a \f$\dot\beta\f$ of the wrong size before anything is computed.
+const VecX<double>& sized(const VecX<double>& beta_dot, const Model& m) {
+  if (beta_dot.size() != m.nv())
+    throw Error("view: beta_dot has " + std::to_string(beta_dot.size()) +
+                " entries, the chain has " + std::to_string(m.nv()) + " degrees of freedom");
+  return beta_dot;
+}
+
+}  // namespace
+
+void Recorder::offer(double t, const State& x) {
+  impl_->offer(t, x, nullptr);
+}
 void Recorder::record(double t, const State& x) {
-  Impl& r = *impl_;
-  if (!r.run.frames.empty() && r.run.frames.back().t == t) return;  // offered and kept
-  if (t != r.last_offered) ++r.offered;  // else offered and skipped: counted already
-  r.last_offered = t;
-  r.capture(t, x);
-  while (r.next < r.budget && r.target(r.next) - r.slack <= t) ++r.next;
+  impl_->record(t, x, nullptr);
+}
+void Recorder::offer(double t, const State& x, const VecX<double>& beta_dot) {
+  impl_->offer(t, x, &sized(beta_dot, impl_->scene.model));
+}
+void Recorder::record(double t, const State& x, const VecX<double>& beta_dot) {
+  impl_->record(t, x, &sized(beta_dot, impl_->scene.model));
 }
 
 Run Recorder::take(const std::string& label) {
