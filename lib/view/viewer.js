@@ -227,6 +227,12 @@
       }
     }
     for (const fv of fixed) grow('fixed', fv.vector, 0);
+    // Rounding is not drawn: a moment N below 1e-9 of the largest force times the size (the
+    // planar pendulum's N, about 1e-15 N m), an angular velocity below 1e-9 of the largest
+    // linear one over the size, counts as zero (and the legend says so).
+    const rounding = { omega: false, N: false };
+    if (max.N > 0 && max.N <= 1e-9 * max.F * size) (max.N = 0), (rounding.N = true);
+    if (max.omega > 0 && max.omega * size <= 1e-9 * max.v) (max.omega = 0), (rounding.omega = true);
     // metres of arrow per unit of the quantity: the largest is 30 % of the chain's size
     const scale = {};
     for (const key in max) scale[key] = max[key] > 0 ? (0.3 * size) / max[key] : 0;
@@ -241,7 +247,7 @@
     const lengths = data.bodies.map((b) => vec(b.segment).length()).filter((l) => l > 1e-9 * size);
     lengths.sort((a, b) => a - b);
     const link = lengths.length ? Math.min(size, lengths[lengths.length >> 1]) : size;
-    return { box, size, link, bodies: nb, max, scale, fixed };
+    return { box, size, link, bodies: nb, max, scale, fixed, rounding };
   }
 
   // ---------------------------------------------------------------------------------------
@@ -671,6 +677,7 @@
   function fillLegend(page) {
     const { m, data } = page;
     const per = (key, unit) => (m.scale[key] > 0 ? '1 m = ' + fmt(1 / m.scale[key]) + ' ' + unit
+                                                 : m.rounding[key] ? '(zero but for rounding)'
                                                  : '(all zero)');
     const hasV = data.runs.some((r) => r.V);
     const hasF = data.runs.some((r) => r.f);
