@@ -24,6 +24,26 @@ void for_random_states(Random<double>& rnd, F f) {
   }
 }
 
+/// Adds to \p err (in eps) how far each frame's f of \p fr is from the inter-body force of
+/// \p ws (after inverse_dynamics() and update_poses()) in world axes; zero for a locked body.
+void add_force_error(const Scene& s, const view::Frame& fr, const Workspace& ws, Worst& err,
+                     int c) {
+  for (std::size_t i = 0; i < s.frames.size(); ++i) {
+    const Scene::Frame& F = s.frames[i];
+    if (F.locked) {
+      EXPECT_EQ(part(fr.f, i, 0), Vec3<double>::Zero());
+      EXPECT_EQ(part(fr.f, i, 1), Vec3<double>::Zero());
+      continue;
+    }
+    const Mat3<double>& R = ws.pose[F.k - 1].R();
+    const Force& f = ws.f[F.k - 1];
+    err.add(std::max(rel(part(fr.f, i, 0), Vec3<double>(R * f.angular())),
+                     rel(part(fr.f, i, 1), Vec3<double>(R * f.linear()))) /
+                eps<double>(),
+            c);
+  }
+}
+
 // Each frame's pose is {}^I T_{O_k} of update_poses() times the frame's offset on body k.
 TEST(view_recorder, PosesAreTheLibrarysKinematics) {
   Random<double> rnd;
@@ -108,20 +128,7 @@ TEST(view_recorder, ForcesAreTheInverseDynamicsOfTheSimulatedMotion) {
     double scale = 1;
     for (const Force& f : ws.f) scale = std::max(scale, f.vector().norm());
     hinge.add(T.norm() / (scale * m.n() * eps<double>()), c);
-    for (std::size_t i = 0; i < s.frames.size(); ++i) {
-      const Scene::Frame& F = s.frames[i];
-      if (F.locked) {
-        EXPECT_EQ(part(fr.f, i, 0), Vec3<double>::Zero());
-        EXPECT_EQ(part(fr.f, i, 1), Vec3<double>::Zero());
-        continue;
-      }
-      const Mat3<double>& R = ws.pose[F.k - 1].R();
-      const Force& f = ws.f[F.k - 1];
-      err.add(std::max(rel(part(fr.f, i, 0), Vec3<double>(R * f.angular())),
-                       rel(part(fr.f, i, 1), Vec3<double>(R * f.linear()))) /
-                  eps<double>(),
-              c);
-    }
+    add_force_error(s, fr, ws, err, c);
   });
   EXPECT_LE(err.value(), 0);  // the same computation
   EXPECT_LE(hinge.value(), 1e4);
@@ -148,20 +155,7 @@ TEST(view_recorder, ForcesOfAPrescribedMotionAreInverseDynamicsAtItsBetaDot) {
     VecX<double> T(m.nv());
     inverse_dynamics(m, x, bd, s.f_ext, ws, T);
     update_poses(m, ws);
-    for (std::size_t i = 0; i < s.frames.size(); ++i) {
-      const Scene::Frame& F = s.frames[i];
-      if (F.locked) {
-        EXPECT_EQ(part(fr.f, i, 0), Vec3<double>::Zero());
-        EXPECT_EQ(part(fr.f, i, 1), Vec3<double>::Zero());
-        continue;
-      }
-      const Mat3<double>& R = ws.pose[F.k - 1].R();
-      const Force& f = ws.f[F.k - 1];
-      err.add(std::max(rel(part(fr.f, i, 0), Vec3<double>(R * f.angular())),
-                       rel(part(fr.f, i, 1), Vec3<double>(R * f.linear()))) /
-                  eps<double>(),
-              c);
-    }
+    add_force_error(s, fr, ws, err, c);
     // At the forward dynamics' beta_dot: the frame of the simulated motion.
     ChainSystem sys(m, s.f_ext);
     VecX<double> bd_fd(m.nv());
