@@ -41,6 +41,7 @@
 
 #include "checklist.hpp"
 #include "plot.hpp"
+#include "report.hpp"
 #include "soa/soa.hpp"
 #include "soa/view.hpp"
 #include "viewer.hpp"
@@ -569,8 +570,18 @@ int main(int argc, char** argv) {
                 frames.size(), crossings);
     checks.check("viewer: the tip crosses the plane normal to h(C) as often as w_2 changes sign",
                  crossings == flips);
-    soa::lesson::check_viewer(checks, out, "l2_flip_view", view,
-                              "paused=1&t=9.5&show=ellipsoids,fixed,frames,tip,V");
+    // The still image (and its caption in the notes) is taken during the third flip: the
+    // third sign change of w_2 is within half a second of it.
+    const double t_still = 9.5;
+    std::vector<double> t_flips;
+    for (std::size_t k = 1; k < run_x.x.size(); ++k)
+      if ((run_x.x[k - 1].V.angular()[1] > 0) != (run_x.x[k].V.angular()[1] > 0))
+        t_flips.push_back(run_x.t(k));
+    checks.check("viewer: its still image (t = 9.5 s) is during the third flip",
+                 t_flips.size() >= 3 && std::abs(t_flips[2] - t_still) < 0.5);
+    soa::lesson::check_viewer(
+        checks, out, "l2_flip_view", view,
+        "paused=1&t=" + soa::lesson::num(t_still, "%g") + "&show=ellipsoids,fixed,frames,tip,V");
   }
 
   /// ## 8. The order of the method

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "detail.hpp"
+#include "soa/instantiations.hpp"  // extern templates: compiled once, in the library
 #include "soa/sim/chain_system.hpp"
 
 namespace soa::view {
