@@ -747,11 +747,11 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
       Scene::Frame f;
       f.name = b.name;
       f.k = k[i] = k[i - 1];
-      f.set_offset((locked.empty() || locked.back().first + 1 != i
-                        ? Pose()
-                        : locked.back().second.offset()) *
-                       b.placement,
-                   b.M.p());
+      f.set_offset(
+          (locked.empty() || locked.back().first + 1 != i ? Pose()
+                                                          : locked.back().second.offset()) *
+              b.placement,
+          b.M.p());
       f.locked = true;
       M = M + transform(Phi(f.offset()), b.M);  // as ModelT::from_base_first() does
       if (!is_finite(M))
