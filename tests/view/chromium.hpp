@@ -37,6 +37,8 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 extern char** environ;
@@ -257,25 +259,50 @@ inline nlohmann::json read_view_data(const fs::path& data_js) {
   return nlohmann::json::parse(text.substr(begin + 1, end - begin - 1));
 }
 
+/// p + q v q^-1: the body-frame point \p v of a body at position \p p with orientation
+/// \p q = [x, y, z, w], in world coordinates (v' = v + 2 w (u x v) + 2 u x (u x v), u = (x, y, z)).
+inline std::array<double, 3> place(const std::array<double, 3>& p, const std::array<double, 4>& q,
+                                   const std::array<double, 3>& v) {
+  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& c) {
+    return std::array<double, 3>{a[1] * c[2] - a[2] * c[1], a[2] * c[0] - a[0] * c[2],
+                                 a[0] * c[1] - a[1] * c[0]};
+  };
+  const std::array<double, 3> u{q[0], q[1], q[2]};
+  const auto uv = cross(u, v);
+  const auto uuv = cross(u, uv);
+  std::array<double, 3> r{};
+  for (int i = 0; i < 3; ++i) r[i] = p[i] + v[i] + 2 * (q[3] * uv[i] + uuv[i]);
+  return r;
+}
+
+/// The page drew a frame, counted no uncaught error, loaded nothing but files, and the
+/// console is silent.
+inline void expect_clean(const Page& page) {
+  EXPECT_EQ(page.attr("data-ready"), "1");
+  EXPECT_EQ(page.attr("data-errors"), "0");
+  for (const std::string& line : page.console) ADD_FAILURE() << "console: " << line;
+  EXPECT_EQ(page.log.find("net::ERR"), std::string::npos) << page.log;
+  for (const std::string& url : words(page.attr("data-resources")))
+    EXPECT_EQ(url.rfind("file://", 0), 0u) << "a resource not from the folder: " << url;
+}
+
+/// The canvas is not (nearly) all background.
+inline void expect_drawn(const Page& page) {
+  const std::string drawn = page.attr("data-drawn");
+  ASSERT_FALSE(drawn.empty()) << "no data-drawn";
+  EXPECT_GT(std::stod(drawn), 0.02) << "the canvas is (nearly) blank";
+}
+
 /// The world position of the tip (`tip.point` in body `tip.body`) at frame \p k of run \p r,
 /// from the pose of the data: p + q point q^-1, q = [x, y, z, w].
 inline std::array<double, 3> tip_from_pose(const nlohmann::json& view, int r, int k) {
   const int b = view.at("tip").at("body").get<int>();
   const auto point = view.at("tip").at("point").get<std::array<double, 3>>();
   const auto& pose = view.at("runs").at(r).at("pose").at(k);
-  const double px = pose.at(7 * b), py = pose.at(7 * b + 1), pz = pose.at(7 * b + 2);
-  const double x = pose.at(7 * b + 3), y = pose.at(7 * b + 4), z = pose.at(7 * b + 5);
-  const double w = pose.at(7 * b + 6);
-  // v' = v + 2 w (u x v) + 2 u x (u x v), u = (x, y, z): the rotation by a unit quaternion
-  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& c) {
-    return std::array<double, 3>{a[1] * c[2] - a[2] * c[1], a[2] * c[0] - a[0] * c[2],
-                                 a[0] * c[1] - a[1] * c[0]};
-  };
-  const std::array<double, 3> u{x, y, z};
-  const auto uv = cross(u, point);
-  const auto uuv = cross(u, uv);
-  return {px + point[0] + 2 * (w * uv[0] + uuv[0]), py + point[1] + 2 * (w * uv[1] + uuv[1]),
-          pz + point[2] + 2 * (w * uv[2] + uuv[2])};
+  const std::array<double, 3> at{pose.at(7 * b), pose.at(7 * b + 1), pose.at(7 * b + 2)};
+  const std::array<double, 4> q{pose.at(7 * b + 3), pose.at(7 * b + 4), pose.at(7 * b + 5),
+                                pose.at(7 * b + 6)};
+  return place(at, q, point);
 }
 
 }  // namespace soa::browser

@@ -50,21 +50,6 @@ std::vector<std::vector<double>> csv_rows(const fs::path& file, std::vector<std:
   return rows;
 }
 
-/// p + q v q^-1, q = [x, y, z, w].
-std::array<double, 3> rotate_add(const std::vector<double>& p, const std::vector<double>& q,
-                                 const std::array<double, 3>& v) {
-  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                                 a[0] * b[1] - a[1] * b[0]};
-  };
-  const std::array<double, 3> u{q[0], q[1], q[2]};
-  const auto uv = cross(u, v);
-  const auto uuv = cross(u, uv);
-  std::array<double, 3> r{};
-  for (int i = 0; i < 3; ++i) r[i] = p[i] + v[i] + 2 * (q[3] * uv[i] + uuv[i]);
-  return r;
-}
-
 std::string joined(const std::vector<double>& v, std::size_t from, std::size_t to) {
   std::ostringstream s;
   s.precision(17);
@@ -105,12 +90,8 @@ TEST_P(SoaPage, ShowsWhatSoaKinematicsComputes) {
     const browser::Page page =
         browser::screenshot(dir / "index.html", "frame=" + std::to_string(k) + "&paused=1", png);
     ASSERT_TRUE(page.ok()) << page.why();
-    EXPECT_EQ(page.attr("data-ready"), "1");
-    EXPECT_EQ(page.attr("data-errors"), "0");
-    for (const std::string& line : page.console) ADD_FAILURE() << "console: " << line;
-    for (const std::string& url : browser::words(page.attr("data-resources")))
-      EXPECT_EQ(url.rfind("file://", 0), 0u) << url;
-    EXPECT_GT(std::stod(page.attr("data-drawn").empty() ? "0" : page.attr("data-drawn")), 0.02);
+    browser::expect_clean(page);
+    browser::expect_drawn(page);
     shots.push_back(browser::read_text(png));
 
     // The frame's state: the CSV row at the page's time.
@@ -128,8 +109,8 @@ TEST_P(SoaPage, ShowsWhatSoaKinematicsComputes) {
     const std::string tip_body = scene_json.at("bodies").back().at("name");
     const auto& body = kin.at("bodies").at(tip_body);
     const std::array<double, 3> expected =
-        rotate_add(body.at("position").get<std::vector<double>>(),
-                   body.at("quaternion").get<std::vector<double>>(), far_end);
+        browser::place(body.at("position").get<std::array<double, 3>>(),
+                       body.at("quaternion").get<std::array<double, 4>>(), far_end);
     const std::vector<double> shown = browser::numbers(page.attr("data-tip"));
     ASSERT_EQ(shown.size(), 3u) << page.attr("data-tip");
     double scale = 1;
