@@ -15,17 +15,18 @@ struct VerbInfo {
   const char* options;  // the options the verb takes, as the help shows them
 };
 constexpr VerbInfo kVerbs[] = {
-    {Verb::Kinematics, "kinematics", "--q, --qd, --qdd, --body"},
-    {Verb::Jacobian, "jacobian", "--q, --body"},
-    {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd"},
-    {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check"},
-    {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --operational, --check"},
+    {Verb::Kinematics, "kinematics", "--q, --qd, --qdd, --body, --tip, --lock"},
+    {Verb::Jacobian, "jacobian", "--q, --body, --tip, --lock"},
+    {Verb::InverseDynamics, "inverse-dynamics", "--q, --qd, --qdd, --tip, --lock"},
+    {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check, --tip, --lock"},
+    {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --operational, --check, --tip, --lock"},
     {Verb::Simulate, "simulate",
      "--q, --qd, --integrator, --dt, --tol, --t-end, --out, --every, --out-dt, --view, --frames, "
-     "--no-velocity, --no-force"},
+     "--no-velocity, --no-force, --tip, --lock"},
     {Verb::View, "view",
      "--out, --q, --qd, --integrator, --dt, --tol, --t-end, --trajectory, --frames, "
-     "--no-velocity, --no-force"},
+     "--no-velocity, --no-force, --tip, --lock"},
+    {Verb::Convert, "convert", "--tip, --lock"},
 };
 
 /// The options that do not go together, and the ones that need another (exit code 2).
@@ -95,7 +96,7 @@ Args parse_args(const std::vector<std::string>& argv) {
       throw UsageError("expected a verb before \"" + argv[0] + "\"");
     throw UsageError("unknown verb \"" + argv[0] +
                      "\" (kinematics, jacobian, inverse-dynamics, forward-dynamics, "
-                     "mass-matrix, simulate or view)");
+                     "mass-matrix, simulate, view or convert)");
   }
   const Verb v = *a.verb;
   const std::string verb = verb_name(v);
@@ -141,6 +142,8 @@ Args parse_args(const std::vector<std::string>& argv) {
                                          : option == "--view"        ? &a.view
                                          : option == "--trajectory"  ? &a.trajectory
                                          : option == "--frames"      ? &a.frames
+                                         : option == "--tip"         ? &a.tip
+                                         : option == "--lock"        ? &a.lock
                                                                      : nullptr;
       if (!slot) throw UsageError("unknown option \"" + option + "\"");
       if (!takes(v, option)) refuse();

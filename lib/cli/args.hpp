@@ -20,11 +20,12 @@ enum class Verb {
   ForwardDynamics,
   MassMatrix,
   Simulate,
-  View
+  View,
+  Convert
 };
 
 /// "kinematics", "jacobian", "inverse-dynamics", "forward-dynamics", "mass-matrix",
-/// "simulate", "view".
+/// "simulate", "view", "convert".
 const char* verb_name(Verb v);
 
 struct Args {
@@ -33,6 +34,8 @@ struct Args {
   std::string scene;         ///< the scene file
   std::optional<std::string> q, qd, qdd, tau, body;  ///< option values as given
   std::optional<std::string> operational;            ///< mass-matrix --operational BODY
+  /// A URDF scene: --tip LINK (the chain's last link), --lock J1,J2 (joints taken as fixed)
+  std::optional<std::string> tip, lock;
   /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
   std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
   /// The viewer: simulate --view DIR; view --trajectory FILE; both --frames N

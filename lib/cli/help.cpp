@@ -25,12 +25,18 @@ Usage:
   soa view             SCENE.json --out DIR [--q V,...] [--qd V,...]
                        [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
                        [--frames N] [--no-velocity] [--no-force]
+  soa convert          ROBOT.urdf [--tip LINK] [--lock JOINT,...] > scene.json
   soa --help
   soa VERB --help
 
 The scene file gives the chain and its state; its format is on the notes' page "Scene
 files" (docs/scenes.md); at most 1 GiB. Results are JSON on stdout, written once they
 are complete (and every write checked).
+
+A URDF robot description (ROBOT.urdf) is a scene too, for every verb: the chain from its
+root link to --tip LINK (default: the one leaf below every moving joint), links fixed to it
+merged, --lock JOINT,... taking joints as fixed at zero. convert prints the equivalent JSON
+scene; the mapping is on the same page.
 
 )";
 
@@ -138,6 +144,7 @@ const std::string& full_help() {
                     --view DIR the run's 3D viewer
   view              the 3D viewer of the chain (its state, a simulation or a trajectory
                     file) as a folder DIR: open DIR/index.html in a browser
+  convert           the JSON scene of a URDF file, commented where the URDF was folded
 
 )" + state_help(std::nullopt) + kFrames +
                                   exit_help(std::nullopt);
@@ -321,6 +328,23 @@ offered and the "note".
   return text;
 }
 
+const std::string& convert_help() {
+  static const std::string text = std::string(R"(Usage: soa convert ROBOT.urdf [--tip LINK] [--lock JOINT,...] > scene.json
+
+Writes the JSON scene of a URDF file: the serial chain from the root link to the tip link,
+as every verb reads the URDF. Comments say where the URDF was folded: the links fixed to
+the root (the ground), links fixed to the chain off its path (merged into the body they
+hang on), massless links (frames), inertias rotated from their <inertial> frame, joint
+limits and friction (kept, not used by the dynamics). Loading the JSON gives the same
+model, bit for bit.
+
+  --tip LINK        the chain's last link (default: the one leaf below every moving joint)
+  --lock J1,J2,...  joints taken as fixed at their zero position (a gripper's fingers)
+
+)") + exit_help(Verb::Convert);
+  return text;
+}
+
 }  // namespace
 
 const char* help_text(std::optional<Verb> verb) {
@@ -340,6 +364,8 @@ const char* help_text(std::optional<Verb> verb) {
       return simulate_help().c_str();
     case Verb::View:
       return view_help().c_str();
+    case Verb::Convert:
+      return convert_help().c_str();
   }
   return full_help().c_str();
 }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -58,6 +59,13 @@ State state_of(const Scene& s, const Args& a, VecX<double>& beta_dot, VecX<doubl
     beta_dot = for_option("--qdd", [&] { return beta_from_file_order(s, qdd); });
   }
   return x;
+}
+
+/// A short number for messages.
+std::string brief(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
 }
 
 /// One number of an option (--dt 1e-3).
@@ -132,12 +140,72 @@ ViewOptions view_options(const Args& a) {
   return o;
 }
 
+/// "a,b,c" as names (--lock).
+std::vector<std::string> parse_names(const std::string& text, const std::string& option) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string name = text.substr(start, comma - start);
+    if (name.empty())
+      throw Error(option + ": entry " + std::to_string(names.size()) + " is empty");
+    names.push_back(name);
+    if (comma == std::string::npos) return names;
+    start = comma + 1;
+  }
+}
+
+/// convert: the URDF's JSON scene on stdout.
+Result convert(const std::string& path, const UrdfOptions& urdf) {
+  if (!is_urdf(path))
+    throw Error(path + ": not a URDF file (convert reads a URDF robot description, *.urdf, "
+                       "and writes its JSON scene)");
+  const std::string text = urdf_to_scene_json(path, urdf);
+  set_stage("writing the result");
+  FdSink out(STDOUT_FILENO, "stdout");
+  out.write(text.data(), text.size());
+  out.finish();
+  return Result();
+}
+
+std::string join_notes(const std::string& a, const std::string& b) {
+  return a.empty() ? b : b.empty() ? a : a + "; " + b;
+}
+
+/// The hinges the state puts outside the limits their file gives (URDF <limit>): reported,
+/// not enforced (the course's dynamics have no limits). "" when none.
+std::string outside_limits(const Scene& s, const State& x) {
+  std::string out;
+  int n = 0;
+  for (const Scene::Frame& f : s.frames) {
+    const HingeLimits* l = f.limits();
+    if (!l || f.locked) continue;
+    const Body& B = s.model.body(f.k);
+    const double q = x.theta[B.q_offset], qd = x.beta[B.v_offset];
+    std::string what;
+    if (q < l->lower || q > l->upper)
+      what = "q = " + brief(q) + " outside [" + brief(l->lower) + ", " + brief(l->upper) + "]";
+    else if (std::abs(qd) > l->velocity)
+      what = "qd = " + brief(qd) + " above its limit " + brief(l->velocity);
+    if (what.empty()) continue;
+    if (n++ < 3) out += (out.empty() ? "" : ", ") + std::string("'") + f.name + "' " + what;
+  }
+  if (n == 0) return "";
+  if (n > 3) out += ", and " + std::to_string(n - 3) + " more";
+  return "the state is outside the joint limits the file gives (" + out +
+         "): reported, not enforced (the course's dynamics have no joint limits)";
+}
+
 /// Loads the scene and runs the verb. Errors after loading (command-line values, --body)
 /// gain the scene file's name, as the scene's own errors have it; so does running out of
 /// memory, with what was being built.
 Result run(const Args& a) {
   set_stage("reading the scene");
-  const Scene s = load_scene(a.scene);
+  UrdfOptions urdf;
+  if (a.tip) urdf.tip = *a.tip;
+  if (a.lock) urdf.lock = parse_names(*a.lock, "--lock");
+  if (*a.verb == Verb::Convert) return convert(a.scene, urdf);
+  const Scene s = load_scene(a.scene, urdf);
   try {
     set_stage("setting up the state");
     VecX<double> beta_dot, tau;
@@ -172,6 +240,8 @@ Result run(const Args& a) {
           r = simulate(s, x, simulation_options(a), output_options(a));
         }
         break;
+      case Verb::Convert:  // handled before the scene is loaded
+        break;
       case Verb::View: {
         const ViewOptions v = view_options(a);
         std::optional<SimulationOptions> sim;
@@ -183,6 +253,7 @@ Result run(const Args& a) {
     set_stage("checking the result");
     if (!all_finite(r.emit))  // never a silent NaN: huge values overflow
       throw Error("result: not finite (an overflow: are q, qd, qdd, tau too large?)");
+    r.note = join_notes(r.note, outside_limits(s, x));
     set_stage("writing the result");
     FdSink out(STDOUT_FILENO, "stdout");
     JsonWriter w(&out);

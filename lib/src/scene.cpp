@@ -8,6 +8,8 @@
 // The chain is then checked as a whole (parents, loops, branches) and built base first.
 #include "soa/scene.hpp"
 
+#include "scene_detail.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cerrno>
@@ -166,6 +168,43 @@ bool is_finite(const SpatialInertia& M) {
   return std::isfinite(M.mass()) && M.h().allFinite() && M.J().allFinite();
 }
 
+}  // namespace
+
+namespace detail {
+
+/// (scene_detail.hpp)
+std::string inertia_problem(Mat3<double>& J) {
+    const double scale = J.cwiseAbs().maxCoeff();
+    for (int r = 0; r < 3; ++r)
+      for (int c = r + 1; c < 3; ++c)
+        if (std::abs(J(r, c) - J(c, r)) > kSymmetricTol * scale)
+          return ("not symmetric ([" + std::to_string(r) + "][" + std::to_string(c) +
+                         "] = " + num(J(r, c)) + " but [" + std::to_string(c) + "][" +
+                         std::to_string(r) + "] = " + num(J(c, r)) + ")");
+    J = (0.5 * J + 0.5 * J.transpose()).eval();  // J + J* would overflow near 1e308
+    // The principal moments of J / 2^e, 2^e near the largest entry (exact scalings, so the
+    // checks and the moments are those of J, without overflow); then of J for the messages.
+    int e = 0;
+    std::frexp(scale, &e);
+    const double s = std::ldexp(1.0, e - 1);
+    const Eigen::SelfAdjointEigenSolver<Mat3<double>> es(J / s, Eigen::EigenvaluesOnly);
+    const Vec3<double> ls = es.eigenvalues();  // ascending
+    const Vec3<double> l = ls * s;
+    if (!l.allFinite())
+      return ("overflows (entries up to " + num(scale) +
+                     "; the principal moments are out of the range of a double)");
+    auto moments = [&] { return num(l[0]) + ", " + num(l[1]) + ", " + num(l[2]); };
+    if (!(ls[0] > 0)) return ("not positive definite (principal moments " + moments() + ")");
+    if (ls[0] + ls[1] < ls[2] * (1 - kTriangleTol))
+      return ("principal moments " + moments() + " break the triangle inequality (" + num(l[0]) +
+                     " + " + num(l[1]) + " < " + num(l[2]) + ")");
+  return "";
+}
+
+}  // namespace detail
+
+namespace {
+
 /// Reads values out of the document, failing with the file name and the JSON path.
 class Reader {
  public:
@@ -276,30 +315,8 @@ class Reader {
       fail(path, "expected a 3x3 matrix (3 rows) or an object {\"Ixx\", ..., \"Iyz\"}, got " +
                      describe(j));
     }
-    const double scale = J.cwiseAbs().maxCoeff();
-    for (int r = 0; r < 3; ++r)
-      for (int c = r + 1; c < 3; ++c)
-        if (std::abs(J(r, c) - J(c, r)) > kSymmetricTol * scale)
-          fail(path, "not symmetric ([" + std::to_string(r) + "][" + std::to_string(c) +
-                         "] = " + num(J(r, c)) + " but [" + std::to_string(c) + "][" +
-                         std::to_string(r) + "] = " + num(J(c, r)) + ")");
-    J = (0.5 * J + 0.5 * J.transpose()).eval();  // J + J* would overflow near 1e308
-    // The principal moments of J / 2^e, 2^e near the largest entry (exact scalings, so the
-    // checks and the moments are those of J, without overflow); then of J for the messages.
-    int e = 0;
-    std::frexp(scale, &e);
-    const double s = std::ldexp(1.0, e - 1);
-    const Eigen::SelfAdjointEigenSolver<Mat3<double>> es(J / s, Eigen::EigenvaluesOnly);
-    const Vec3<double> ls = es.eigenvalues();  // ascending
-    const Vec3<double> l = ls * s;
-    if (!l.allFinite())
-      fail(path, "overflows (entries up to " + num(scale) +
-                     "; the principal moments are out of the range of a double)");
-    auto moments = [&] { return num(l[0]) + ", " + num(l[1]) + ", " + num(l[2]); };
-    if (!(ls[0] > 0)) fail(path, "not positive definite (principal moments " + moments() + ")");
-    if (ls[0] + ls[1] < ls[2] * (1 - kTriangleTol))
-      fail(path, "principal moments " + moments() + " break the triangle inequality (" + num(l[0]) +
-                     " + " + num(l[1]) + " < " + num(l[2]) + ")");
+    const std::string problem = detail::inertia_problem(J);
+    if (!problem.empty()) fail(path, problem);
     return J;
   }
 
@@ -313,7 +330,7 @@ struct FileBodies {
   static constexpr std::size_t kBase = std::size_t(-1);     // the parent is the base
   static constexpr std::size_t kLater = std::size_t(-2);    // a name not listed before (later)
   static constexpr std::size_t kUnknown = std::size_t(-3);  // a name no body has
-  enum Flag : unsigned char { kQ = 1, kQd = 2, kQdd = 4, kLocked = 8 };
+  enum Flag : unsigned char { kQ = 1, kQd = 2, kQdd = 4, kLocked = 8, kMassless = 16 };
 
   std::size_t count = 0;
   std::vector<Body> body;
@@ -322,6 +339,7 @@ struct FileBodies {
   std::unordered_map<std::string, std::size_t> index;      // name -> body
   std::vector<unsigned char> flags;                        // Flag bits
   std::vector<double> q, qd, qdd;                          // the values given, body by body
+  std::vector<std::pair<std::size_t, HingeLimits>> limits;  // (body, its limits), by body
 
   /// The parents listed after their child (or not at all), now that every name is known.
   void resolve_later() {
@@ -413,6 +431,42 @@ void read_spring(const Reader& r, const json& j, const Path& path, Body& b) {
   }
 }
 
+/// The optional "limits" {"lower", "upper", "effort", "velocity"} and "friction" of a 1-dof
+/// hinge: kept for the record (HingeLimits), not used by the dynamics.
+HingeLimits read_limits(const Reader& r, const json* limits, const json* friction,
+                        const Path& path, const Body& b) {
+  const HingeType t = b.hinge.type;
+  const bool one_dof = t == HingeType::Revolute || t == HingeType::Prismatic ||
+                       t == HingeType::Helical;
+  const Path lp = path.key(limits ? "limits" : "friction");
+  if (!one_dof)
+    r.fail(lp, std::string("applies to revolute, prismatic and helical hinges only, not to a ") +
+                   hinge_type_name(t) + " hinge");
+  HingeLimits l;
+  if (limits) {
+    r.expect_object(*limits, lp);
+    r.only_fields(*limits, lp, {"lower", "upper", "effort", "velocity"});
+    auto get = [&](const char* key, double& x) {
+      if (const json* v = Reader::optional(*limits, key)) x = r.number(*v, lp.key(key));
+    };
+    get("lower", l.lower);
+    get("upper", l.upper);
+    get("effort", l.effort);
+    get("velocity", l.velocity);
+    if (!(l.lower <= l.upper))
+      r.fail(lp, "lower " + num(l.lower) + " is above upper " + num(l.upper));
+    if (!(l.effort >= 0)) r.fail(lp.key("effort"), "must not be negative (got " + num(l.effort) + ")");
+    if (!(l.velocity >= 0))
+      r.fail(lp.key("velocity"), "must not be negative (got " + num(l.velocity) + ")");
+  }
+  if (friction) {
+    const Path fp = path.key("friction");
+    l.friction = r.number(*friction, fp);
+    if (!(l.friction >= 0)) r.fail(fp, "must not be negative (got " + num(l.friction) + ")");
+  }
+  return l;
+}
+
 /// A per-body state vector ("q", "qd", "qdd") of the hinge's size, appended to \p out.
 void read_state(const Reader& r, const json& j, const Path& path, const Hinge& h,
                 bool configuration, std::vector<double>& out) {
@@ -431,25 +485,34 @@ void read_state(const Reader& r, const json& j, const Path& path, const Hinge& h
 void read_body(const Reader& r, const json& j, std::size_t i, FileBodies& fb) {
   const Path path = kBodies.index(i);
   r.expect_object(j, path);
-  r.only_fields(j, path,
-                {"name", "parent", "mass", "com", "inertia", "hinge", "spring", "q", "qd", "qdd"});
+  r.only_fields(j, path, {"name", "parent", "mass", "com", "inertia", "hinge", "spring", "limits",
+                          "friction", "q", "qd", "qdd"});
   Body b;
   const Path name_path = path.key("name");
   b.name = r.string(r.required(j, path, "name"), name_path);
   if (b.name.empty()) r.fail(name_path, "empty name");
   if (b.name == "base") r.fail(name_path, "\"base\" names the ground; pick another");
   const std::string parent = r.string(r.required(j, path, "parent"), path.key("parent"));
-  const double m = r.number(r.required(j, path, "mass"), path.key("mass"));
-  if (!(m > 0)) r.fail(path.key("mass"), "must be positive (got " + num(m) + ")");
-  const Vec3<double> com = r.vec3(r.required(j, path, "com"), path.key("com"));
-  const Mat3<double> J = r.inertia(r.required(j, path, "inertia"), path.key("inertia"));
-  b.M = SpatialInertia::from_cm(m, com, J);
-  if (!is_finite(b.M))  // m p and m p p about O_k
-    r.fail(path, "the inertia about the hinge frame overflows (mass " + num(m) + ", com at " +
-                     num(safe_norm(com)) + " from it)");
+  // A massless body (a frame such as a URDF's tool0) has none of mass, com, inertia.
+  const bool massless = !Reader::optional(j, "mass") && !Reader::optional(j, "com") &&
+                        !Reader::optional(j, "inertia");
+  if (!massless) {
+    const double m = r.number(r.required(j, path, "mass"), path.key("mass"));
+    if (!(m > 0)) r.fail(path.key("mass"), "must be positive (got " + num(m) + ")");
+    const Vec3<double> com = r.vec3(r.required(j, path, "com"), path.key("com"));
+    const Mat3<double> J = r.inertia(r.required(j, path, "inertia"), path.key("inertia"));
+    b.M = SpatialInertia::from_cm(m, com, J);
+    if (!is_finite(b.M))  // m p and m p p about O_k
+      r.fail(path, "the inertia about the hinge frame overflows (mass " + num(m) + ", com at " +
+                       num(safe_norm(com)) + " from it)");
+  }
   read_hinge(r, r.required(j, path, "hinge"), path.key("hinge"), b);
   if (const json* s = Reader::optional(j, "spring")) read_spring(r, *s, path.key("spring"), b);
+  const json* limits = Reader::optional(j, "limits");
+  const json* friction = Reader::optional(j, "friction");
+  if (limits || friction) fb.limits.emplace_back(i, read_limits(r, limits, friction, path, b));
   unsigned char flags = b.hinge.type == HingeType::Locked ? FileBodies::kLocked : 0;
+  if (massless) flags |= FileBodies::kMassless;
   if (const json* v = Reader::optional(j, "q")) {
     read_state(r, *v, path.key("q"), b.hinge, true, fb.q);
     flags |= FileBodies::kQ;
@@ -728,6 +791,16 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
     r.fail(kBodies.index(0).key("hinge").key("type"),
            "a locked hinge next to the base fixes the body to the ground; remove the body or "
            "give it another hinge");
+  // A massless body is a frame; its hinge must move something of mass.
+  bool mass_outboard = false;
+  for (std::size_t i = n; i-- > 0;) {
+    mass_outboard = mass_outboard || !(fb.flags[i] & FileBodies::kMassless);
+    if (!mass_outboard && !(fb.flags[i] & FileBodies::kLocked))
+      r.fail(kBodies.index(i),
+             "massless, and so is every body outboard of it: its " +
+                 std::string(hinge_type_name(fb.body[i].hinge.type)) +
+                 " hinge moves nothing of mass (give a body a mass, or lock the hinge)");
+  }
   int n_kept = 0;
   for (unsigned char f : fb.flags) n_kept += !(f & FileBodies::kLocked);
   std::vector<int> k(n);
@@ -751,7 +824,7 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
           (locked.empty() || locked.back().first + 1 != i ? Pose()
                                                           : locked.back().second.offset()) *
               b.placement,
-          b.M.p());
+          fb.flags[i] & FileBodies::kMassless ? Vec3<double>::Zero() : b.M.p());
       f.locked = true;
       M = M + transform(Phi(f.offset()), b.M);  // as ModelT::from_base_first() does
       if (!is_finite(M))
@@ -813,6 +886,7 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
   s.frames.reserve(n);
   s.file_order.reserve(n_kept);
   auto next_locked = locked.begin();
+  auto next_limits = fb.limits.begin();
   for (std::size_t i = 0; i < n; ++i) {
     if (next_locked != locked.end() && next_locked->first == i) {
       s.frames.push_back(std::move(next_locked++->second));
@@ -821,6 +895,8 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
     Scene::Frame f;
     f.name = s.model.body(k[i]).name;
     f.k = k[i];
+    if (next_limits != fb.limits.end() && next_limits->first == i)
+      f.set_limits(next_limits++->second);
     s.frames.push_back(std::move(f));
     s.file_order.push_back(k[i]);
   }
@@ -992,7 +1068,35 @@ Scene load_scene(const std::string& path) {
   return load_scene(path, kMaxSceneBytes);
 }
 
+Scene load_scene(const std::string& path, const UrdfOptions& urdf) {
+  if (!is_urdf(path)) {
+    if (!urdf.tip.empty() || !urdf.lock.empty())
+      throw Error(path + ": " + (urdf.tip.empty() ? "--lock" : "--tip") +
+                  " applies to URDF files, not to a JSON scene");
+    return load_scene(path);
+  }
+  detail::UrdfText t = detail::convert_urdf(path, urdf);
+  try {
+    return parse_scene(t.json, path);
+  } catch (const Error& e) {  // "<file>: bodies[3].hinge.axis: ..." names the link or joint
+    std::string m = e.what();
+    const std::string prefix = path + ": bodies[";
+    if (m.compare(0, prefix.size(), prefix) != 0) throw;
+    const std::size_t close = m.find(']', prefix.size());
+    const std::size_t i = std::stoul(m.substr(prefix.size(), close - prefix.size()));
+    if (i >= t.bodies.size()) throw;
+    std::string rest = m.substr(close + 1);
+    const bool hinge = rest.compare(0, 6, ".hinge") == 0;
+    const std::string who = hinge ? "joint '" + t.bodies[i].second + "'"
+                                  : "link '" + t.bodies[i].first + "'";
+    if (hinge) rest = rest.substr(6);
+    if (!rest.empty() && rest[0] == '.') rest = " " + rest.substr(1);
+    throw Error(path + ": " + who + rest);
+  }
+}
+
 Scene load_scene(const std::string& path, std::uint64_t max_bytes) {
+  if (is_urdf(path)) return load_scene(path, UrdfOptions{});
   try {
     return load_file(path, max_bytes);
   } catch (const std::bad_alloc&) {  // before read_scene() (which says where)

@@ -10,7 +10,9 @@
 /// file larger than kMaxSceneBytes or nested deeper than kMaxSceneDepth is refused.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +22,20 @@
 #include "soa/chain/workspace.hpp"
 
 namespace soa {
+
+/// What a scene keeps of a hinge but the course's dynamics do not use: the limits and the
+/// Coulomb friction of a URDF joint (`<limit>`, `<dynamics friction>`), or a JSON body's
+/// "limits" and "friction". They are kept to be reported (and written back by `soa
+/// convert`), never applied: the recursions have no joint limits and no friction.
+struct HingeLimits {
+  double lower = -std::numeric_limits<double>::infinity();  ///< position (rad or m)
+  double upper = std::numeric_limits<double>::infinity();
+  double effort = std::numeric_limits<double>::infinity();    ///< |T| (N m or N)
+  double velocity = std::numeric_limits<double>::infinity();  ///< |beta| (rad/s or m/s)
+  double friction = 0;                                        ///< Coulomb friction (N m or N)
+  /// The position has a bound (URDF's continuous joints have none).
+  bool has_position() const { return std::isfinite(lower) || std::isfinite(upper); }
+};
 
 /// A scene: the chain, its initial state and the optional parts (gravity lives in the model,
 /// springs and dampers on its bodies).
@@ -50,6 +66,10 @@ struct Scene {
     /// body k, whose \f$M(k)\f$ has the centre of the whole); zero for a body that keeps its
     /// hinge, whose own centre is \f$M(k)\f$'s unless locked bodies ride on it.
     const Vec3<double>& own_com() const { return locked_ ? locked_->com : Locked::none().com; }
+    /// The limits and friction the file gives the body's hinge (unused by the dynamics:
+    /// HingeLimits), or null.
+    const HingeLimits* limits() const { return limits_.get(); }
+    void set_limits(const HingeLimits& l) { limits_ = std::make_shared<const HingeLimits>(l); }
     /// Makes the frame a locked body's: fixed on body k at \p T, with its own centre of mass.
     void set_offset(const Pose& T, const Vec3<double>& own_com = Vec3<double>::Zero()) {
       locked_ = std::make_shared<const Locked>(Locked{T, own_com});
@@ -65,6 +85,7 @@ struct Scene {
       }
     };
     std::shared_ptr<const Locked> locked_;  // only locked bodies have one: 56 bytes a frame
+    std::shared_ptr<const HingeLimits> limits_;  // only hinges given limits or friction
   };
   /// Every body of the file, in the order of the file, locked ones included.
   std::vector<Frame> frames;
@@ -78,12 +99,28 @@ constexpr std::uint64_t kMaxSceneBytes = std::uint64_t(1) << 30;
 /// top level, "bodies", a body, its "hinge", "placement", "rotation").
 constexpr int kMaxSceneDepth = 100;
 
-/// Reads and checks a scene file. Throws soa::Error("<file>: <json path>: <problem>"), or
+/// Reads and checks a scene file, JSON or URDF (is_urdf(); the URDF's only chain). Throws soa::Error("<file>: <json path>: <problem>"), or
 /// "<file>: <problem>" for the file itself (cannot open it, a directory, a read error, larger
 /// than kMaxSceneBytes, out of memory while reading it).
 Scene load_scene(const std::string& path);
 /// The same with another size limit: a file larger than \p max_bytes bytes is refused.
 Scene load_scene(const std::string& path, std::uint64_t max_bytes);
+
+/// What a URDF file's chain is (docs/scenes.md, URDF input).
+struct UrdfOptions {
+  std::string tip;                ///< the tip link ("": the one leaf below every moving joint)
+  std::vector<std::string> lock;  ///< joints taken as fixed at their zero position
+};
+
+/// A URDF file, read with urdfdom, as a scene: the serial chain from the root link to the tip
+/// (UrdfOptions). Throws soa::Error("<file>: joint 'j': <problem>", "<file>: link 'l': ...").
+/// The same as load_scene() of the JSON text urdf_to_scene_json() gives, bit for bit.
+Scene load_scene(const std::string& path, const UrdfOptions& urdf);
+/// The JSON scene equivalent to a URDF file (what `soa convert` prints), with comments where
+/// the URDF was folded (ground, merged links, rotated inertias) or something dropped.
+std::string urdf_to_scene_json(const std::string& path, const UrdfOptions& urdf = {});
+/// A URDF file: named *.urdf, or its first character that is not white space is '<'.
+bool is_urdf(const std::string& path);
 
 /// The same from JSON text (at most kMaxSceneBytes); \p name stands for the file in messages.
 Scene parse_scene(const std::string& json_text, const std::string& name);

@@ -17,7 +17,8 @@ Vec3<double> segment(const Scene& scene, std::size_t i) {
   if (i + 1 == scene.frames.size()) {
     // The last body: its own centre of mass (a body with a hinge carries nothing further
     // out, so M(k)'s centre is its own).
-    return 2.0 * (F.locked ? F.own_com() : Vec3<double>(scene.model.body(F.k).M.p()));
+    const SpatialInertia& M = scene.model.body(F.k).M;
+    return 2.0 * (F.locked || !(M.mass() > 0) ? F.own_com() : Vec3<double>(M.p()));
   }
   // The next body's hinge point on body k (the carrier of both F and the next frame):
   // O_{k'}^+ = placement(k') for a next body k' with a hinge (k' = k - 1, hinge k' sits on
@@ -71,8 +72,10 @@ View view_of(const Scene& scene) {
       if (B.hinge.type == HingeType::Revolute || B.hinge.type == HingeType::Prismatic)
         b.axis = B.hinge.axis;  // in O_k^+ and in O_k alike: the hinge moves along it
       b.mass = B.M.mass();
-      b.com = B.M.p();
-      set_ellipsoid(b.mass, B.M.J_cm(), b);
+      if (b.mass > 0) {  // a massless body (a frame on a hinge) has no ellipsoid
+        b.com = B.M.p();
+        set_ellipsoid(b.mass, B.M.J_cm(), b);
+      }
     }
     v.bodies.push_back(std::move(b));
   }
