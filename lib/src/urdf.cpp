@@ -143,8 +143,11 @@ class Converter {
       if (!model_.getJoint(j)) fail("--lock: no joint named '" + j + "'" + names_of_joints());
       locked_.insert(j);
     }
+    std::size_t n_moving = 0;
+    for (const auto& [name, j] : model_.joints_) n_moving += moving(*j);
+    if (n_moving == 0) fail("no moving joint: every joint is fixed (or locked), no chain");
     const urdf::LinkConstSharedPtr root = model_.getRoot();
-    const urdf::Link* tip = find_tip(*root);
+    const urdf::Link* tip = tip_ = find_tip(*root);
     std::vector<const urdf::Link*> path;  // root ... tip
     for (const urdf::Link* l = tip; l; l = l->getParent().get()) path.push_back(l);
     std::reverse(path.begin(), path.end());
@@ -255,14 +258,29 @@ class Converter {
     for (const urdf::Link* l : leaves)
       if (moving_above(*l).size() == n_moving) full.push_back(l);
     if (full.size() == 1) return full[0];
-    if (n_moving == 0) fail("no moving joint: every joint is fixed (or locked), no chain");
     std::vector<std::string> names;
     for (const urdf::Link* l : (full.empty() ? leaves : full)) names.push_back("'" + l->name + "'");
     if (full.empty())
       fail("a tree, not a chain: no single path from '" + root.name +
            "' passes every moving joint (its ends: " + join(names) +
            "); choose the tip with --tip LINK, and lock the joints off its path with --lock JOINT");
-    fail("several links end the chain (" + join(names) + "); choose one with --tip LINK");
+    // Several ends, each below every moving joint: their paths part after the last moving
+    // joint, and fixed joints only follow. The chain ends where they part.
+    std::vector<const urdf::Link*> common;
+    for (const urdf::Link* l = full[0]; l; l = l->getParent().get()) common.push_back(l);
+    std::reverse(common.begin(), common.end());
+    std::size_t n_common = common.size();
+    for (const urdf::Link* leaf : full) {
+      std::vector<const urdf::Link*> p;
+      for (const urdf::Link* l = leaf; l; l = l->getParent().get()) p.push_back(l);
+      std::reverse(p.begin(), p.end());
+      std::size_t i = 0;
+      while (i < n_common && i < p.size() && p[i] == common[i]) ++i;
+      n_common = i;
+    }
+    header_.push_back(join(names) + " end the chain, fixed to '" + common[n_common - 1]->name +
+                      "': merged into it (keep one's frame with --tip LINK)");
+    return common[n_common - 1];
   }
   void collect_leaves(const urdf::Link& l, std::vector<const urdf::Link*>& out) const {
     if (l.child_links.empty()) out.push_back(&l);
@@ -271,11 +289,11 @@ class Converter {
 
   /// A side branch from \p on must be fixed all the way: the error names its moving joint.
   void require_fixed(const urdf::Joint& j, const urdf::Link& on) const {
-    if (!moving(j))
-      return;
+    if (!moving(j)) return;
+    const std::string where = &on == tip_ ? "beyond the tip '" + on.name + "'"
+                                          : "a branch off the chain at '" + on.name + "'";
     fail("joint '" + j.name + "' (" + type_name(j.type) + ") moves '" + j.child_link_name +
-         "', a branch off the chain at '" + on.name +
-         "': the course's chains are serial; lock it with --lock " + j.name +
+         "', " + where + ": the course's chains are serial; lock it with --lock " + j.name +
          ", or choose a tip beyond it with --tip LINK");
   }
 
@@ -431,8 +449,8 @@ class Converter {
   /// The JSON scene, with comments where the URDF was folded or something was dropped.
   std::string text(const std::string& tip) const {
     std::string s;
-    s += "// Converted by `soa convert` from " + file_ + " (robot '" + model_.getName() +
-         "'), the chain from its root to link '" + tip + "' (docs/scenes.md, URDF input).\n";
+    s += "// Converted by `soa convert` from " + file_ + " (robot '" + model_.getName() + "'):\n";
+    s += "// the chain from its root to link '" + tip + "' (docs/scenes.md, URDF input).\n";
     s += "// URDF has no gravity: the scene takes 9.81 m/s^2 along -z, as ROS does.\n";
     s += "// Joint limits and friction are kept (\"limits\", \"friction\") but not used: the\n";
     s += "// course's dynamics have neither.\n";
@@ -487,6 +505,7 @@ class Converter {
   std::set<std::string> locked_;
   std::vector<Entry> entries_;
   std::vector<std::string> header_;
+  const urdf::Link* tip_ = nullptr;
 };
 
 /// The file's bytes (at most kMaxSceneBytes), its problems named.

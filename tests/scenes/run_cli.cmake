@@ -7,6 +7,7 @@
 #   -DSAME_AS=<arguments of a second run whose stdout must be identical>
 #   -DCHECK=view: the viewer folder of view or simulate --view (-DFRAMES=<frames in
 #           data.js> -DNOTE=<regular expression the note must match>)
+#   -DNOTE=<regex> with another CHECK and exit code 0: the one line stderr must hold
 #   -DNO_FOLDER=<path>: removed before the run, and must not exist after it (nothing written)
 # A failing exit code must come with nothing on stdout and exactly one line on stderr.
 #   (";" in STDERR and STDERR_PREFIX is passed as %3B)
@@ -33,6 +34,11 @@ if(NOT RC EQUAL 0)
   list(LENGTH newlines lines)
   if(NOT lines EQUAL 1 OR NOT err MATCHES "\n$")
     message(FATAL_ERROR "${ran}: expected one line on stderr, got:\n${err}")
+  endif()
+elseif(DEFINED NOTE AND NOT CHECK STREQUAL "view")
+  # A note on stderr with exit code 0 (the state outside a URDF's joint limits): one line.
+  if(NOT err MATCHES "${NOTE}" OR NOT err MATCHES "^[^\n]*\n$")
+    message(FATAL_ERROR "${ran}: stderr \"${err}\" is not one line matching ${NOTE}")
   endif()
 elseif(NOT err STREQUAL "")
   message(FATAL_ERROR "${ran}: exit code 0 but stderr:\n${err}")
