@@ -96,6 +96,16 @@ const std::map<std::string, std::string>& expected_messages() {
        "helical, universal, spherical, free or locked)"},
       {"zero_axis", "bodies[1].hinge.axis: zero axis; an axis needs a direction"},
       {"axis_on_spherical", "bodies[1].hinge: field \"axis\" does not apply to a spherical hinge"},
+      // massless bodies, limits and friction (issue 15)
+      {"massless_moving_tip",
+       "bodies[1]: massless, and so is every body outboard of it: its revolute hinge moves "
+       "nothing of mass (give a body a mass, or lock the hinge)"},
+      {"limits_on_spherical",
+       "bodies[1].limits: applies to revolute, prismatic and helical hinges only, not to a "
+       "spherical hinge"},
+      {"limits_reversed", "bodies[0].limits: lower 2 is above upper 1"},
+      {"limits_unknown_field", "bodies[0].limits: unknown field \"max\""},
+      {"friction_negative", "bodies[0].friction: must not be negative (got -1)"},
       {"universal_parallel_axes",
        "bodies[1].hinge.axis2: parallel to axis; a universal hinge needs two different axes"},
       {"non_unit_quaternion",

@@ -153,6 +153,49 @@ TEST(scene_format, DefaultsWhenAbsent) {
   EXPECT_EQ(s.model.body(1).stiffness, 0.0);
 }
 
+// A body with no mass, com and inertia is a frame: locked, it adds nothing to its carrier;
+// on a hinge, its hinge moves the mass outboard. Limits and friction are kept, not used.
+TEST(scene_format, MasslessBodiesLimitsAndFriction) {
+  const std::string head = R"({"bodies": [
+      {"name": "a", "parent": "base", "hinge": {"type": "revolute", "axis": [0, 0, 1]},
+       "limits": {"lower": -1, "upper": 2, "effort": 30, "velocity": 4}, "friction": 0.5},
+      {"name": "b", "parent": "a", "mass": 2, "com": [0.3, 0, 0],
+       "inertia": {"Ixx": 1, "Iyy": 1, "Izz": 1},
+       "hinge": {"type": "revolute", "axis": [0, 1, 0], "placement": {"position": [0, 0, 1]}}})";
+  const Scene s = parse_scene(head + R"(,
+      {"name": "tool", "parent": "b", "hinge": {"type": "locked",
+       "placement": {"position": [0, 0, 0.2]}}}]})",
+                              "massless.json");
+  const Scene t = parse_scene(head + "]}", "plain.json");
+  ASSERT_EQ(s.model.n(), 2);
+  EXPECT_EQ(s.model.body(2).M.mass(), 0.0);
+  for (int k = 1; k <= 2; ++k) EXPECT_EQ(s.model.body(k).M.matrix(), t.model.body(k).M.matrix());
+  ASSERT_EQ(s.frames.size(), 3u);
+  EXPECT_TRUE(s.frames[2].locked);
+  EXPECT_EQ(s.frames[2].own_com(), Vec3<double>::Zero());
+  EXPECT_EQ(s.frames[2].offset().l(), Vec3<double>(0, 0, 0.2));
+  const HingeLimits* l = s.frames[0].limits();
+  ASSERT_TRUE(l);
+  EXPECT_EQ(l->lower, -1);
+  EXPECT_EQ(l->upper, 2);
+  EXPECT_EQ(l->effort, 30);
+  EXPECT_EQ(l->velocity, 4);
+  EXPECT_EQ(l->friction, 0.5);
+  EXPECT_FALSE(s.frames[1].limits());
+  // The dynamics do not use them: the same hinge forces with and without.
+  State x = State::rest(s.model);
+  x.theta << 0.4, 0.7;  // tip first
+  x.beta << 1.0, -2.0;
+  Workspace ws(s.model);
+  VecX<double> T(2), U(2);
+  const VecX<double> qdd = VecX<double>::Constant(2, 0.5);
+  inverse_dynamics(s.model, x, qdd, {}, ws, T);
+  inverse_dynamics(t.model, x, qdd, {}, ws, U);
+  EXPECT_EQ(T, U);
+  const Operators op = Operators::build(s.model, x, {});
+  EXPECT_EQ(op.mass_matrix().llt().info(), Eigen::Success);
+}
+
 // The example of docs/scenes.md (its first code block) is a valid scene, comments and all.
 TEST(scene_format, DocumentedExampleLoads) {
   const std::string page = read_text(std::string(SOA_SOURCE_DIR) + "/docs/scenes.md");

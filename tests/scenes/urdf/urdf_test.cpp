@@ -3,7 +3,7 @@
 /// course's chain, checked on small robots written by the test (random numbers from a fixed
 /// seed where a case has numbers), each error with its message (the files of
 /// tests/scenes/urdf/bad/), urdfdom silent, `soa convert`'s JSON giving the same model bit
-/// for bit, and arm7.urdf agreeing with arm7.json. Suite urdf.
+/// for bit, and the default scenes' URDF and JSON files agreeing. Suite urdf.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -505,7 +505,8 @@ TEST(urdf, EachBadFileHasItsMessage) {
 /// The project's URDFs: `soa convert`'s JSON reads back to the same model bit for bit.
 TEST(urdf, ConvertGivesTheSameModelBitForBit) {
   const std::string dir = temp_dir();
-  for (const char* name : {"arm7.urdf", "panda.urdf", "ur5e.urdf"}) {
+  for (const char* name :
+       {"arm7.urdf", "double_pendulum.urdf", "chain50.urdf", "panda.urdf", "ur5e.urdf"}) {
     SCOPED_TRACE(name);
     const std::string copy = dir + "/" + name;  // the JSON is written beside it
     fs::copy_file(default_scene(name), copy);
@@ -513,35 +514,38 @@ TEST(urdf, ConvertGivesTheSameModelBitForBit) {
   }
 }
 
-/// arm7.urdf and arm7.json: the same M, T and accelerations, to 1e-15 relative, at random
-/// states of a fixed seed.
-TEST(urdf, Arm7UrdfAgreesWithArm7Json) {
-  const Scene u = load_scene(default_scene("arm7.urdf"));
-  const Scene j = load_scene(default_scene("arm7.json"));
-  ASSERT_EQ(u.model.nv(), j.model.nv());
-  ASSERT_EQ(u.frames.size(), j.frames.size());
+/// The default scenes in both formats (arm7, double_pendulum, chain50 .urdf beside .json):
+/// the same M, T and accelerations, to 1e-15 relative, at random states of a fixed seed.
+TEST(urdf, DefaultScenesAgreeInBothFormats) {
   Random<double> rnd;
-  Worst wM("arm7 URDF vs JSON: M"), wT("arm7 URDF vs JSON: T"), wA("arm7 URDF vs JSON: qdd");
-  for (int i = 0; i < 50; ++i) {
-    const State x = random_state(rnd, j.model);
-    const VecX<double> qdd = random_vector(rnd, j.model.nv()),
-                       tau = random_vector(rnd, j.model.nv());
-    const Operators ou = Operators::build(u.model, x, {}), oj = Operators::build(j.model, x, {});
-    wM.add(rel(ou.mass_matrix(), oj.mass_matrix()), i);
+  for (const std::string name : {"arm7", "double_pendulum", "chain50"}) {
+    SCOPED_TRACE(name);
+    const Scene u = load_scene(default_scene(name + ".urdf"));
+    const Scene j = load_scene(default_scene(name + ".json"));
+    ASSERT_EQ(u.model.nv(), j.model.nv());
+    ASSERT_EQ(u.frames.size(), j.frames.size());
+    const int nv = j.model.nv();
+    Worst wM(name + " URDF vs JSON: M"), wT(name + " URDF vs JSON: T"),
+        wA(name + " URDF vs JSON: qdd");
     Workspace wsu(u.model), wsj(j.model);
-    VecX<double> Tu(u.model.nv()), Tj(j.model.nv());
-    inverse_dynamics(u.model, x, qdd, {}, wsu, Tu);
-    inverse_dynamics(j.model, x, qdd, {}, wsj, Tj);
-    wT.add(rel(Tu, Tj), i);
     ForwardDynamics fu(u.model), fj(j.model);
-    VecX<double> au(j.model.nv()), aj(j.model.nv());
-    forward_dynamics(u.model, x, tau, {}, wsu, fu, au);
-    forward_dynamics(j.model, x, tau, {}, wsj, fj, aj);
-    wA.add(rel(au, aj), i);
+    for (int i = 0; i < 20; ++i) {
+      const State x = random_state(rnd, j.model);
+      const VecX<double> qdd = random_vector(rnd, nv), tau = random_vector(rnd, nv);
+      const Operators ou = Operators::build(u.model, x, {}), oj = Operators::build(j.model, x, {});
+      wM.add(rel(ou.mass_matrix(), oj.mass_matrix()), i);
+      VecX<double> Tu(nv), Tj(nv), au(nv), aj(nv);
+      inverse_dynamics(u.model, x, qdd, {}, wsu, Tu);
+      inverse_dynamics(j.model, x, qdd, {}, wsj, Tj);
+      wT.add(rel(Tu, Tj), i);
+      forward_dynamics(u.model, x, tau, {}, wsu, fu, au);
+      forward_dynamics(j.model, x, tau, {}, wsj, fj, aj);
+      wA.add(rel(au, aj), i);
+    }
+    EXPECT_LE(wM.value(), 1e-15);
+    EXPECT_LE(wT.value(), 1e-15);
+    EXPECT_LE(wA.value(), 1e-15);
   }
-  EXPECT_LE(wM.value(), 1e-15);
-  EXPECT_LE(wT.value(), 1e-15);
-  EXPECT_LE(wA.value(), 1e-15);
 }
 
 /// The real arms: every joint's limits kept, a positive definite mass matrix, inverse
