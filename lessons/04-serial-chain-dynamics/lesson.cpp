@@ -29,7 +29,8 @@
 /// Run it as `lesson04 OUTDIR`: it prints each check and writes the joint torques of a
 /// 7-joint arm along a motion (`l4_arm7_torques.csv`, `l4_arm7_terms.csv`), their figures
 /// (`l4_arm7_torques.png`, `l4_arm7_terms.png`) and the 3D viewer of that motion with its
-/// inter-body forces, `OUTDIR/l4_arm7_view/` (open its `index.html` in a browser).
+/// inter-body forces, `OUTDIR/l4_arm7_view/` (open its `index.html` in a browser), and the
+/// Panda's torques holding a payload (`l4_panda_payload.md`, `l4_panda_payload.csv`).
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -1086,6 +1087,169 @@ int main(int argc, char** argv) {
     }
     checks.check("dK/dt = beta* M beta_dot + 1/2 beta* M_dot beta = beta* (T - G) along the motion",
                  kin_err, fd_tol(w_max, kin_ref));
+  }
+
+  /// ## 12. A real arm holding a payload: the Franka Emika Panda
+  ///
+  /// The Panda of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/panda.urdf`: Franka's
+  /// kinematics, the inertial parameters identified by Gaz et al. 2019, Franka's joint limits
+  /// and rated torques; the header of the file cites them) holds a payload still,
+  /// \f$\beta = 0\f$, \f$\dot\beta = 0\f$, at the pose \f$q = (0, -0.3, 0, -2.2, 0, 2.0,
+  /// 0.8)\f$ rad (Franka's joints 1 to 7, from the base; inside every joint's limits, checked).
+  /// The payload, of mass \f$m_p\f$ from 0 to Franka's rated 3 kg, is a point mass at the
+  /// origin of the flange frame F (`panda_link8`, a massless frame fixed on link 7: in the
+  /// scene a locked body, fixed on body k at \f${}^{O_k}T_F\f$, Scene::Frame::offset()). Its
+  /// weight is the external force \f$f_F = [0;\ m_p\,{}^F g]\f$ at F, which enters body k as
+  /// \f$f_{ext}(k) = \phi(O_k, F)\, f_F\f$ (section 6). The torques the motors must supply are
+  /// computed three ways:
+  /// - the O(N) Newton–Euler recursions of section 1 with \f$f_{ext}\f$ (soa::inverse_dynamics);
+  /// - the operator form of section 3 at \f$\dot\beta = 0\f$, \f$T = H\phi\,(M\phi^* a + b)\f$
+  ///   with \f$b(k) = -f_{ext}(k)\f$ (dense, soa::OperatorsT);
+  /// - the arm's own gravity torques plus the payload's through the flange Jacobian of
+  ///   lesson 3, \f$T = \mathcal G(\theta) - J^*(F)\, f_F\f$ (section 6); and, as a fourth
+  ///   check, the arm with the payload welded to link 7 (its point-mass inertia moved to
+  ///   \f$O_k\f$ by the parallel axis theorem and added to \f$M(k)\f$), without \f$f_{ext}\f$.
+  ///
+  /// The table `l4_panda_payload.md` of the lesson 4 page gives \f$|T_k|\f$ over the rated torque
+  /// of joint k (87 N m for joints 1 to 4, 12 N m for joints 5 to 7, read from the file's
+  /// `<limit effort>`) for each payload, and the sentence under it the largest ratio: both are
+  /// written by the program from the torques it computes. The torques grow linearly with
+  /// \f$m_p\f$ (the Jacobian route), by \f$-J^*(F)\,[0;\ {}^F g]\f$ per kilogram. Joint limits
+  /// and rated torques are only read here: the recursions never apply them.
+  checks.section("12. A real arm holding a payload: the Franka Emika Panda");
+  {
+    const std::string panda_path =
+        SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/panda.urdf";
+    soa::Scene panda;
+    std::string why;
+    try {
+      panda = soa::load_scene(panda_path);
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
+    checks.check("panda.urdf loads" + (why.empty() ? std::string() : " (" + why + ")"),
+                 why.empty() && panda.model.nv() == 7);
+    if (why.empty() && panda.model.nv() == 7) {
+      const Model& pm = panda.model;
+      const int pn = pm.n(), pv = pm.nv();
+      // Its joints base first, with their limits, and the flange frame.
+      std::vector<const soa::Scene::Frame*> joints;
+      const soa::Scene::Frame* flange = nullptr;
+      for (const soa::Scene::Frame& F : panda.frames) {
+        if (F.name == "panda_link8") flange = &F;
+        if (!F.locked && pm.body(F.k).hinge.nv() == 1) joints.push_back(&F);
+      }
+      bool rated = joints.size() == 7 && flange && flange->locked;
+      for (const soa::Scene::Frame* F : joints)
+        rated = rated && F->limits() && std::isfinite(F->limits()->effort) &&
+                F->limits()->effort > 0 && F->limits()->has_position();
+      checks.check("7 joints with limits and rated torques; flange panda_link8 fixed on link 7",
+                   rated);
+      if (rated) {
+        const std::vector<double> q_franka = {0.0, -0.3, 0.0, -2.2, 0.0, 2.0, 0.8};
+        const State xp{soa::theta_from_file_order(panda, q_franka), VecX::Zero(pv)};
+        bool inside = true;
+        for (std::size_t j = 0; j < joints.size(); ++j) {
+          const soa::HingeLimits& L = *joints[j]->limits();
+          const double qj = xp.theta[pm.body(joints[j]->k).q_offset];
+          inside = inside && qj >= L.lower && qj <= L.upper;
+        }
+        checks.check("the pose lies inside every joint's limits", inside);
+        const int kf = flange->k;
+        const Pose& offset = flange->offset();  // ^{O_k}T_F
+        Workspace wp(pm);
+        soa::update_phi(pm, xp.theta, wp);
+        soa::update_poses(pm, wp);
+        Eigen::Matrix<double, 6, Eigen::Dynamic> J_F(6, pv);
+        soa::jacobian(pm, xp.theta, wp, kf, offset, J_F);
+        const Vec3 g_F = (wp.pose[kf - 1] * offset).R().transpose() * pm.gravity;  // F coords
+        const VecX zero = VecX::Zero(pv);
+        const VecX G_arm = inverse_dynamics(pm, xp, zero);
+        std::vector<double> payloads;
+        for (int i = 0; i <= 6; ++i) payloads.push_back(0.5 * i);
+        std::vector<VecX> ratios;
+        double op_err = 0, jac_err = 0, weld_err = 0, scale = 0;
+        for (const double mp : payloads) {
+          const Force f_F(Vec3::Zero(), mp * g_F);
+          soa::ExternalForces<double> fe(std::size_t(pn), Force::Zero());
+          fe[std::size_t(kf - 1)] = Phi(offset).apply(f_F);  // phi(O_k, F) f_F
+          Workspace wt(pm);
+          VecX Tp(pv);
+          soa::inverse_dynamics(pm, xp, zero, fe, wt, Tp);
+          const double s = stack(wt.f).norm();
+          scale = std::max(scale, s);
+          const Operators opp = Operators::build(pm, xp, fe);
+          const VecX T_op = opp.H * opp.phi * (opp.M * opp.phi.transpose() * opp.a + opp.b);
+          op_err = std::max(op_err, (T_op - Tp).norm() / s);
+          const VecX T_jac = G_arm - J_F.transpose() * f_F.vector();
+          jac_err = std::max(jac_err, (T_jac - Tp).norm() / s);
+          if (mp > 0) {
+            Model welded = pm;
+            welded.body(kf).M = welded.body(kf).M +
+                                soa::transform(Phi(offset), SpatialInertia::from_cm(
+                                                                mp, Vec3::Zero(), Mat3::Zero()));
+            weld_err = std::max(weld_err, (inverse_dynamics(welded, xp, zero) - Tp).norm() / s);
+          }
+          VecX r(7);
+          for (std::size_t j = 0; j < joints.size(); ++j)
+            r[Eigen::Index(j)] =
+                std::abs(Tp[pm.body(joints[j]->k).v_offset]) / joints[j]->limits()->effort;
+          ratios.push_back(r);
+          std::printf("  payload %.1f kg: |T_k| / rated, joints 1-7 = %s\n", mp, row(r).c_str());
+        }
+        checks.check("Panda: Newton-Euler T = H phi (M phi* a + b), f_ext at the flange (/ |f|)",
+                     op_err, 8 * kEps * pn);
+        checks.check("Panda: T = G(theta) - J*(F) f_F, flange Jacobian (/ |f|)", jac_err,
+                     8 * kEps * pn);
+        checks.check("Panda: T = the arm with the payload welded to link 7 (/ |f|)", weld_err,
+                     8 * kEps * pn);
+        // The largest ratio, and where.
+        std::size_t worst_m = 0;
+        Eigen::Index worst_j = 0;
+        for (std::size_t i = 0; i < ratios.size(); ++i) {
+          Eigen::Index j;
+          if (ratios[i].maxCoeff(&j) > ratios[worst_m][worst_j]) worst_m = i, worst_j = j;
+        }
+        const double worst = ratios[worst_m][worst_j];
+        std::printf("  largest |T_k| / rated: %.3f, joint %d, payload %.1f kg\n", worst,
+                    int(worst_j) + 1, payloads[worst_m]);
+        std::ofstream md(out / "l4_panda_payload.md");
+        md << "| payload [kg] |";
+        for (std::size_t j = 0; j < joints.size(); ++j)
+          md << " joint " << j + 1 << " (" << joints[j]->limits()->effort << " N m) |";
+        md << "\n|--:|";
+        for (std::size_t j = 0; j < joints.size(); ++j) md << "--:|";
+        md << "\n";
+        std::ofstream csv(out / "l4_panda_payload.csv");
+        csv << "payload [kg]";
+        for (std::size_t j = 0; j < joints.size(); ++j) csv << ",joint " << j + 1 << " |T|/rated";
+        csv << "\n";
+        char cell[160];
+        for (std::size_t i = 0; i < ratios.size(); ++i) {
+          std::snprintf(cell, sizeof cell, "%.1f", payloads[i]);
+          md << "| " << cell << " |";
+          csv << cell;
+          for (Eigen::Index j = 0; j < 7; ++j) {
+            std::snprintf(cell, sizeof cell, "%.3f", ratios[i][j]);
+            md << " " << cell << " |";
+            csv << "," << cell;
+          }
+          md << "\n";
+          csv << "\n";
+        }
+        std::snprintf(cell, sizeof cell,
+                      "\nThe largest ratio is %.3f, at joint %d (rated %g N m) with %.1f kg: "
+                      "%s.\n",
+                      worst, int(worst_j) + 1, joints[std::size_t(worst_j)]->limits()->effort,
+                      payloads[worst_m],
+                      worst <= 1 ? "every joint holds the payloads within its rated torque"
+                                 : "that joint's rated torque is exceeded");
+        md << cell;
+        md.close();
+        csv.close();
+        checks.check("l4_panda_payload.md and l4_panda_payload.csv written", bool(md) && bool(csv));
+      }
+    }
   }
 
   return checks.finish();
