@@ -329,7 +329,8 @@ offered and the "note".
 }
 
 const std::string& convert_help() {
-  static const std::string text = std::string(R"(Usage: soa convert ROBOT.urdf [--tip LINK] [--lock JOINT,...] > scene.json
+  static const std::string text =
+      std::string(R"(Usage: soa convert ROBOT.urdf [--tip LINK] [--lock JOINT,...] > scene.json
 
 Writes the JSON scene of a URDF file: the serial chain from the root link to the tip link,
 as every verb reads the URDF. Comments say where the URDF was folded: the links fixed to

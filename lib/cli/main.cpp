@@ -147,8 +147,7 @@ std::vector<std::string> parse_names(const std::string& text, const std::string&
   while (true) {
     const std::size_t comma = text.find(',', start);
     const std::string name = text.substr(start, comma - start);
-    if (name.empty())
-      throw Error(option + ": entry " + std::to_string(names.size()) + " is empty");
+    if (name.empty()) throw Error(option + ": entry " + std::to_string(names.size()) + " is empty");
     names.push_back(name);
     if (comma == std::string::npos) return names;
     start = comma + 1;
@@ -158,8 +157,9 @@ std::vector<std::string> parse_names(const std::string& text, const std::string&
 /// convert: the URDF's JSON scene on stdout.
 Result convert(const std::string& path, const UrdfOptions& urdf) {
   if (!is_urdf(path))
-    throw Error(path + ": not a URDF file (convert reads a URDF robot description, *.urdf, "
-                       "and writes its JSON scene)");
+    throw Error(path +
+                ": not a URDF file (convert reads a URDF robot description, *.urdf, "
+                "and writes its JSON scene)");
   const std::string text = urdf_to_scene_json(path, urdf);
   set_stage("writing the result");
   FdSink out(STDOUT_FILENO, "stdout");

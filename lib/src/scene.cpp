@@ -174,30 +174,30 @@ namespace detail {
 
 /// (scene_detail.hpp)
 std::string inertia_problem(Mat3<double>& J) {
-    const double scale = J.cwiseAbs().maxCoeff();
-    for (int r = 0; r < 3; ++r)
-      for (int c = r + 1; c < 3; ++c)
-        if (std::abs(J(r, c) - J(c, r)) > kSymmetricTol * scale)
-          return ("not symmetric ([" + std::to_string(r) + "][" + std::to_string(c) +
-                         "] = " + num(J(r, c)) + " but [" + std::to_string(c) + "][" +
-                         std::to_string(r) + "] = " + num(J(c, r)) + ")");
-    J = (0.5 * J + 0.5 * J.transpose()).eval();  // J + J* would overflow near 1e308
-    // The principal moments of J / 2^e, 2^e near the largest entry (exact scalings, so the
-    // checks and the moments are those of J, without overflow); then of J for the messages.
-    int e = 0;
-    std::frexp(scale, &e);
-    const double s = std::ldexp(1.0, e - 1);
-    const Eigen::SelfAdjointEigenSolver<Mat3<double>> es(J / s, Eigen::EigenvaluesOnly);
-    const Vec3<double> ls = es.eigenvalues();  // ascending
-    const Vec3<double> l = ls * s;
-    if (!l.allFinite())
-      return ("overflows (entries up to " + num(scale) +
-                     "; the principal moments are out of the range of a double)");
-    auto moments = [&] { return num(l[0]) + ", " + num(l[1]) + ", " + num(l[2]); };
-    if (!(ls[0] > 0)) return ("not positive definite (principal moments " + moments() + ")");
-    if (ls[0] + ls[1] < ls[2] * (1 - kTriangleTol))
-      return ("principal moments " + moments() + " break the triangle inequality (" + num(l[0]) +
-                     " + " + num(l[1]) + " < " + num(l[2]) + ")");
+  const double scale = J.cwiseAbs().maxCoeff();
+  for (int r = 0; r < 3; ++r)
+    for (int c = r + 1; c < 3; ++c)
+      if (std::abs(J(r, c) - J(c, r)) > kSymmetricTol * scale)
+        return ("not symmetric ([" + std::to_string(r) + "][" + std::to_string(c) +
+                "] = " + num(J(r, c)) + " but [" + std::to_string(c) + "][" + std::to_string(r) +
+                "] = " + num(J(c, r)) + ")");
+  J = (0.5 * J + 0.5 * J.transpose()).eval();  // J + J* would overflow near 1e308
+  // The principal moments of J / 2^e, 2^e near the largest entry (exact scalings, so the
+  // checks and the moments are those of J, without overflow); then of J for the messages.
+  int e = 0;
+  std::frexp(scale, &e);
+  const double s = std::ldexp(1.0, e - 1);
+  const Eigen::SelfAdjointEigenSolver<Mat3<double>> es(J / s, Eigen::EigenvaluesOnly);
+  const Vec3<double> ls = es.eigenvalues();  // ascending
+  const Vec3<double> l = ls * s;
+  if (!l.allFinite())
+    return ("overflows (entries up to " + num(scale) +
+            "; the principal moments are out of the range of a double)");
+  auto moments = [&] { return num(l[0]) + ", " + num(l[1]) + ", " + num(l[2]); };
+  if (!(ls[0] > 0)) return ("not positive definite (principal moments " + moments() + ")");
+  if (ls[0] + ls[1] < ls[2] * (1 - kTriangleTol))
+    return ("principal moments " + moments() + " break the triangle inequality (" + num(l[0]) +
+            " + " + num(l[1]) + " < " + num(l[2]) + ")");
   return "";
 }
 
@@ -335,10 +335,10 @@ struct FileBodies {
   std::size_t count = 0;
   std::vector<Body> body;
   std::vector<std::size_t> parent;  // the parent's index, or kBase, kLater, kUnknown
-  std::vector<std::pair<std::size_t, std::string>> later;  // (body, parent name), by body
-  std::unordered_map<std::string, std::size_t> index;      // name -> body
-  std::vector<unsigned char> flags;                        // Flag bits
-  std::vector<double> q, qd, qdd;                          // the values given, body by body
+  std::vector<std::pair<std::size_t, std::string>> later;   // (body, parent name), by body
+  std::unordered_map<std::string, std::size_t> index;       // name -> body
+  std::vector<unsigned char> flags;                         // Flag bits
+  std::vector<double> q, qd, qdd;                           // the values given, body by body
   std::vector<std::pair<std::size_t, HingeLimits>> limits;  // (body, its limits), by body
 
   /// The parents listed after their child (or not at all), now that every name is known.
@@ -433,11 +433,11 @@ void read_spring(const Reader& r, const json& j, const Path& path, Body& b) {
 
 /// The optional "limits" {"lower", "upper", "effort", "velocity"} and "friction" of a 1-dof
 /// hinge: kept for the record (HingeLimits), not used by the dynamics.
-HingeLimits read_limits(const Reader& r, const json* limits, const json* friction,
-                        const Path& path, const Body& b) {
+HingeLimits read_limits(const Reader& r, const json* limits, const json* friction, const Path& path,
+                        const Body& b) {
   const HingeType t = b.hinge.type;
-  const bool one_dof = t == HingeType::Revolute || t == HingeType::Prismatic ||
-                       t == HingeType::Helical;
+  const bool one_dof =
+      t == HingeType::Revolute || t == HingeType::Prismatic || t == HingeType::Helical;
   const Path lp = path.key(limits ? "limits" : "friction");
   if (!one_dof)
     r.fail(lp, std::string("applies to revolute, prismatic and helical hinges only, not to a ") +
@@ -455,7 +455,8 @@ HingeLimits read_limits(const Reader& r, const json* limits, const json* frictio
     get("velocity", l.velocity);
     if (!(l.lower <= l.upper))
       r.fail(lp, "lower " + num(l.lower) + " is above upper " + num(l.upper));
-    if (!(l.effort >= 0)) r.fail(lp.key("effort"), "must not be negative (got " + num(l.effort) + ")");
+    if (!(l.effort >= 0))
+      r.fail(lp.key("effort"), "must not be negative (got " + num(l.effort) + ")");
     if (!(l.velocity >= 0))
       r.fail(lp.key("velocity"), "must not be negative (got " + num(l.velocity) + ")");
   }
@@ -485,8 +486,9 @@ void read_state(const Reader& r, const json& j, const Path& path, const Hinge& h
 void read_body(const Reader& r, const json& j, std::size_t i, FileBodies& fb) {
   const Path path = kBodies.index(i);
   r.expect_object(j, path);
-  r.only_fields(j, path, {"name", "parent", "mass", "com", "inertia", "hinge", "spring", "limits",
-                          "friction", "q", "qd", "qdd"});
+  r.only_fields(j, path,
+                {"name", "parent", "mass", "com", "inertia", "hinge", "spring", "limits",
+                 "friction", "q", "qd", "qdd"});
   Body b;
   const Path name_path = path.key("name");
   b.name = r.string(r.required(j, path, "name"), name_path);
@@ -1075,7 +1077,12 @@ Scene load_scene(const std::string& path, const UrdfOptions& urdf) {
                   " applies to URDF files, not to a JSON scene");
     return load_scene(path);
   }
-  detail::UrdfText t = detail::convert_urdf(path, urdf);
+  detail::UrdfText t;
+  try {
+    t = detail::convert_urdf(path, urdf);
+  } catch (const std::bad_alloc&) {
+    throw Error(path + ": out of memory while reading the URDF");
+  }
   try {
     return parse_scene(t.json, path);
   } catch (const Error& e) {  // "<file>: bodies[3].hinge.axis: ..." names the link or joint
@@ -1087,8 +1094,8 @@ Scene load_scene(const std::string& path, const UrdfOptions& urdf) {
     if (i >= t.bodies.size()) throw;
     std::string rest = m.substr(close + 1);
     const bool hinge = rest.compare(0, 6, ".hinge") == 0;
-    const std::string who = hinge ? "joint '" + t.bodies[i].second + "'"
-                                  : "link '" + t.bodies[i].first + "'";
+    const std::string who =
+        hinge ? "joint '" + t.bodies[i].second + "'" : "link '" + t.bodies[i].first + "'";
     if (hinge) rest = rest.substr(6);
     if (!rest.empty() && rest[0] == '.') rest = " " + rest.substr(1);
     throw Error(path + ": " + who + rest);
@@ -1096,8 +1103,8 @@ Scene load_scene(const std::string& path, const UrdfOptions& urdf) {
 }
 
 Scene load_scene(const std::string& path, std::uint64_t max_bytes) {
-  if (is_urdf(path)) return load_scene(path, UrdfOptions{});
   try {
+    if (is_urdf(path)) return load_scene(path, UrdfOptions{});
     return load_file(path, max_bytes);
   } catch (const std::bad_alloc&) {  // before read_scene() (which says where)
     throw Error(path + ": out of memory before reading");

@@ -10,11 +10,11 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <console_bridge/console.h>
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <console_bridge/console.h>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -205,9 +205,7 @@ class Converter {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) const {
-    throw Error(file_ + ": " + problem);
-  }
+  [[noreturn]] void fail(const std::string& problem) const { throw Error(file_ + ": " + problem); }
 
   bool moving(const urdf::Joint& j) const {
     return j.type != urdf::Joint::FIXED && !locked_.count(j.name);
@@ -292,8 +290,8 @@ class Converter {
     if (!moving(j)) return;
     const std::string where = &on == tip_ ? "beyond the tip '" + on.name + "'"
                                           : "a branch off the chain at '" + on.name + "'";
-    fail("joint '" + j.name + "' (" + type_name(j.type) + ") moves '" + j.child_link_name +
-         "', " + where + ": the course's chains are serial; lock it with --lock " + j.name +
+    fail("joint '" + j.name + "' (" + type_name(j.type) + ") moves '" + j.child_link_name + "', " +
+         where + ": the course's chains are serial; lock it with --lock " + j.name +
          ", or choose a tip beyond it with --tip LINK");
   }
 
@@ -333,8 +331,9 @@ class Converter {
     if (I.mass < 0) fail(where + "mass " + brief(I.mass) + " is negative");
     if (I.mass == 0) {
       if (!J.isZero(0))
-        fail(where + "mass 0 with a non-zero inertia (a massless link has neither: leave "
-                     "<inertial> out)");
+        fail(where +
+             "mass 0 with a non-zero inertia (a massless link has neither: leave "
+             "<inertial> out)");
       e.notes.push_back("link '" + l.name + "': <inertial> of mass 0: a massless frame");
       return;
     }
@@ -344,8 +343,9 @@ class Converter {
       const Mat3<double> R = to_pose(I.origin).R();  // link frame <- inertial frame
       J = R * J * R.transpose();
       J = (0.5 * J + 0.5 * J.transpose()).eval();
-      e.notes.push_back("inertia: rotated from the <inertial> frame (origin rpy) into the link "
-                        "frame");
+      e.notes.push_back(
+          "inertia: rotated from the <inertial> frame (origin rpy) into the link "
+          "frame");
     }
     e.massless = false;
     e.mass = I.mass;
@@ -401,8 +401,9 @@ class Converter {
                             ") locked at its zero position by --lock");
         break;
       case urdf::Joint::PLANAR:
-        fail(where + "a planar joint (3 dofs in a plane) has no hinge in the course (revolute, "
-                     "prismatic, helical, universal, spherical, free); lock it with --lock " +
+        fail(where +
+             "a planar joint (3 dofs in a plane) has no hinge in the course (revolute, "
+             "prismatic, helical, universal, spherical, free); lock it with --lock " +
              joint.name);
       default:
         fail(where + "unknown joint type");
@@ -463,7 +464,8 @@ class Converter {
       s += "    // link '" + e.link + "' on joint '" + e.joint + "' (" + e.joint_type + ")";
       s += e.joint_type == e.hinge ? "\n" : ": " + e.hinge + "\n";
       for (const std::string& n : e.notes) s += "    // " + n + "\n";
-      s += "    {\n      \"name\": " + json_string(e.link) + ", \"parent\": " + json_string(parent) + ",\n";
+      s += "    {\n      \"name\": " + json_string(e.link) +
+           ", \"parent\": " + json_string(parent) + ",\n";
       if (!e.massless) {
         s += "      \"mass\": " + num(e.mass) + ", \"com\": " + vec(e.com) + ",\n";
         s += "      \"inertia\": {\"Ixx\": " + num(e.J(0, 0)) + ", \"Iyy\": " + num(e.J(1, 1)) +
@@ -487,7 +489,8 @@ class Converter {
       if (e.limits) {
         const urdf::JointLimits& l = *e.limits;
         s += ",\n      \"limits\": {";
-        if (!e.continuous) s += "\"lower\": " + num(l.lower) + ", \"upper\": " + num(l.upper) + ", ";
+        if (!e.continuous)
+          s += "\"lower\": " + num(l.lower) + ", \"upper\": " + num(l.upper) + ", ";
         s += "\"effort\": " + num(l.effort) + ", \"velocity\": " + num(l.velocity) + "}";
       }
       if (e.friction > 0) s += ",\n      \"friction\": " + num(e.friction);

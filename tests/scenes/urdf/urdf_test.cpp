@@ -54,9 +54,8 @@ std::string massless(const std::string& name) {
 /// A link with an inertial: mass m, centre xyz, frame rpy, inertia (xx, yy, zz, xy, xz, yz).
 std::string link(const std::string& name, double m, const Vec3<double>& xyz = Vec3<double>::Zero(),
                  const Vec3<double>& rpy = Vec3<double>::Zero(),
-                 const Eigen::Matrix<double, 6, 1>& I = (Eigen::Matrix<double, 6, 1>() << 0.1, 0.2,
-                                                         0.25, 0, 0, 0)
-                                                            .finished()) {
+                 const Eigen::Matrix<double, 6, 1>& I =
+                     (Eigen::Matrix<double, 6, 1>() << 0.1, 0.2, 0.25, 0, 0, 0).finished()) {
   return "  <link name=\"" + name + "\">\n    <inertial>\n      <origin xyz=\"" + triple(xyz) +
          "\" rpy=\"" + triple(rpy) + "\"/>\n      <mass value=\"" + num(m) +
          "\"/>\n      <inertia ixx=\"" + num(I[0]) + "\" iyy=\"" + num(I[1]) + "\" izz=\"" +
@@ -161,8 +160,8 @@ const Scene::Frame& frame(const Scene& s, const std::string& name) {
   return s.frames.front();
 }
 
-const Eigen::Matrix<double, 6, 1> kI = (Eigen::Matrix<double, 6, 1>() << 0.1, 0.2, 0.25, 0, 0, 0)
-                                           .finished();
+const Eigen::Matrix<double, 6, 1> kI =
+    (Eigen::Matrix<double, 6, 1>() << 0.1, 0.2, 0.25, 0, 0, 0).finished();
 
 TEST(urdf, InertialOriginIsTheCentreOfMassAndItsRpyRotatesTheInertia) {
   const std::string dir = temp_dir();
@@ -170,14 +169,13 @@ TEST(urdf, InertialOriginIsTheCentreOfMassAndItsRpyRotatesTheInertia) {
   Worst worst("inertia from <inertial> vs from_cm(m, xyz, R J R*)");
   for (int i = 0; i < 40; ++i) {
     const double m = rnd.uniform(0.1, 10);
-    const Vec3<double> xyz = rnd.vec3(), rpy(rnd.uniform(-3, 3), rnd.uniform(-1.5, 1.5),
-                                             rnd.uniform(-3, 3));
+    const Vec3<double> xyz = rnd.vec3(),
+                       rpy(rnd.uniform(-3, 3), rnd.uniform(-1.5, 1.5), rnd.uniform(-3, 3));
     const Eigen::Matrix<double, 6, 1> I = random_inertia(rnd);
-    const std::string path = write(
-        dir, "r" + std::to_string(i) + ".urdf",
-        robot(massless("base") + link("l1", m, xyz, rpy, I) +
-              joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
-                    axis(Vec3<double>::UnitZ()))));
+    const std::string path = write(dir, "r" + std::to_string(i) + ".urdf",
+                                   robot(massless("base") + link("l1", m, xyz, rpy, I) +
+                                         joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(),
+                                               Vec3<double>::Zero(), axis(Vec3<double>::UnitZ()))));
     const Scene s = load_scene(path);
     const Mat3<double> R = rpy_matrix(rpy);
     const SpatialInertia expected =
@@ -193,15 +191,15 @@ TEST(urdf, JointOriginIsThePlacementAndAxisIsInTheChildFrame) {
   Random<double> rnd;
   Worst worst("placement vs origin xyz rpy");
   for (int i = 0; i < 40; ++i) {
-    const Vec3<double> xyz = rnd.vec3(), rpy(rnd.uniform(-3, 3), rnd.uniform(-1.5, 1.5),
-                                             rnd.uniform(-3, 3));
+    const Vec3<double> xyz = rnd.vec3(),
+                       rpy(rnd.uniform(-3, 3), rnd.uniform(-1.5, 1.5), rnd.uniform(-3, 3));
     const Vec3<double> a = rnd.vec3();
-    const std::string path = write(
-        dir, "p" + std::to_string(i) + ".urdf",
-        robot(massless("base") + link("l1", 1) + link("l2", 2) +
-              joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
-                    axis(Vec3<double>::UnitZ())) +
-              joint("j2", i % 2 ? "revolute" : "prismatic", "l1", "l2", xyz, rpy, axis(a))));
+    const std::string path =
+        write(dir, "p" + std::to_string(i) + ".urdf",
+              robot(massless("base") + link("l1", 1) + link("l2", 2) +
+                    joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(),
+                          Vec3<double>::Zero(), axis(Vec3<double>::UnitZ())) +
+                    joint("j2", i % 2 ? "revolute" : "prismatic", "l1", "l2", xyz, rpy, axis(a))));
     const Scene s = load_scene(path);
     const Body& B = s.model.body(1);  // l2, the tip
     EXPECT_EQ(B.hinge.type, i % 2 ? HingeType::Revolute : HingeType::Prismatic);
@@ -217,8 +215,7 @@ TEST(urdf, JointTypesMapOntoHinges) {
   const std::string path = write(
       dir, "types.urdf",
       robot(massless("world") + link("float", 1) + link("rev", 1) + link("cont", 1) +
-            link("pris", 1) + link("fix", 1) +
-            joint("j_float", "floating", "world", "float") +
+            link("pris", 1) + link("fix", 1) + joint("j_float", "floating", "world", "float") +
             joint("j_rev", "revolute", "float", "rev", Vec3<double>(0, 0, 1), Vec3<double>::Zero(),
                   axis(Vec3<double>::UnitY())) +
             joint("j_cont", "continuous", "rev", "cont", Vec3<double>(0, 0, 1),
@@ -249,14 +246,14 @@ TEST(urdf, AxisDefaultsToX) {
 
 TEST(urdf, DampingBecomesTheDamperLimitsAndFrictionAreKept) {
   const std::string dir = temp_dir();
-  const std::string path = write(
-      dir, "dyn.urdf",
-      robot(massless("base") + link("l1", 1) + link("l2", 1) +
-            joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
-                  "    <limit lower=\"-1.5\" upper=\"2.5\" effort=\"40\" velocity=\"3\"/>\n"
-                  "    <dynamics damping=\"0.75\" friction=\"0.25\"/>\n") +
-            joint("j2", "continuous", "l1", "l2", Vec3<double>(0, 0, 1), Vec3<double>::Zero(),
-                  "    <limit effort=\"5\" velocity=\"6\"/>\n")));
+  const std::string path =
+      write(dir, "dyn.urdf",
+            robot(massless("base") + link("l1", 1) + link("l2", 1) +
+                  joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
+                        "    <limit lower=\"-1.5\" upper=\"2.5\" effort=\"40\" velocity=\"3\"/>\n"
+                        "    <dynamics damping=\"0.75\" friction=\"0.25\"/>\n") +
+                  joint("j2", "continuous", "l1", "l2", Vec3<double>(0, 0, 1), Vec3<double>::Zero(),
+                        "    <limit effort=\"5\" velocity=\"6\"/>\n")));
   const Scene s = load_scene(path);
   EXPECT_EQ(s.model.body(2).damping, 0.75);
   EXPECT_EQ(s.model.body(2).stiffness, 0.0);
@@ -279,15 +276,15 @@ TEST(urdf, DampingBecomesTheDamperLimitsAndFrictionAreKept) {
 TEST(urdf, MasslessLinksAreFrames) {
   const std::string dir = temp_dir();
   // A massless link between two joints moves the mass outboard of it; tool0 is a frame.
-  const std::string path = write(
-      dir, "massless.urdf",
-      robot(massless("base_link") + link("l1", 2) + massless("l2") + link("l3", 1.5) +
-            massless("tool0") + joint("j1", "revolute", "base_link", "l1") +
-            joint("j2", "revolute", "l1", "l2", Vec3<double>(0, 0, 0.3), Vec3<double>::Zero(),
-                  axis(Vec3<double>::UnitY())) +
-            joint("j3", "revolute", "l2", "l3", Vec3<double>::Zero(), Vec3<double>::Zero(),
-                  axis(Vec3<double>::UnitZ())) +
-            joint("j4", "fixed", "l3", "tool0", Vec3<double>(0, 0, 0.1))));
+  const std::string path =
+      write(dir, "massless.urdf",
+            robot(massless("base_link") + link("l1", 2) + massless("l2") + link("l3", 1.5) +
+                  massless("tool0") + joint("j1", "revolute", "base_link", "l1") +
+                  joint("j2", "revolute", "l1", "l2", Vec3<double>(0, 0, 0.3), Vec3<double>::Zero(),
+                        axis(Vec3<double>::UnitY())) +
+                  joint("j3", "revolute", "l2", "l3", Vec3<double>::Zero(), Vec3<double>::Zero(),
+                        axis(Vec3<double>::UnitZ())) +
+                  joint("j4", "fixed", "l3", "tool0", Vec3<double>(0, 0, 0.1))));
   const Scene s = load_scene(path);
   ASSERT_EQ(s.model.n(), 3);
   EXPECT_EQ(s.model.body(2).M.mass(), 0.0) << "l2 is massless";
@@ -305,11 +302,10 @@ TEST(urdf, LinksFixedToTheRootAreTheGround) {
   const std::string dir = temp_dir();
   Random<double> rnd;
   const Vec3<double> x1 = rnd.vec3(), r1(0.3, -0.2, 1.1), x2 = rnd.vec3(), r2(-0.5, 0.4, 0.2);
-  const std::string path = write(
-      dir, "ground.urdf",
-      robot(link("world", 50) + link("pedestal", 20) + link("l1", 1) +
-            joint("fix", "fixed", "world", "pedestal", x1, r1) +
-            joint("j1", "revolute", "pedestal", "l1", x2, r2)));
+  const std::string path = write(dir, "ground.urdf",
+                                 robot(link("world", 50) + link("pedestal", 20) + link("l1", 1) +
+                                       joint("fix", "fixed", "world", "pedestal", x1, r1) +
+                                       joint("j1", "revolute", "pedestal", "l1", x2, r2)));
   const Scene s = load_scene(path);
   ASSERT_EQ(s.model.n(), 1);
   EXPECT_EQ(s.model.body(1).M.mass(), 1.0) << "the ground's masses are not part of the chain";
@@ -361,23 +357,27 @@ TEST(urdf, FixedSideBranchesAreRigidMass) {
 
 TEST(urdf, MovingSideBranchIsAnErrorAndLockTakesItIn) {
   const std::string dir = temp_dir();
-  const std::string path = write(
-      dir, "gripper.urdf",
-      robot(massless("base") + link("l1", 2) + link("hand", 0.7) + link("left", 0.1) +
-            link("right", 0.1) + joint("j1", "revolute", "base", "l1") +
-            joint("wrist", "fixed", "l1", "hand", Vec3<double>(0, 0, 0.3)) +
-            joint("finger_left", "prismatic", "hand", "left", Vec3<double>(0, 0.02, 0.05),
-                  Vec3<double>::Zero(), axis(Vec3<double>::UnitY())) +
-            joint("finger_right", "prismatic", "hand", "right", Vec3<double>(0, -0.02, 0.05),
-                  Vec3<double>::Zero(), axis(-Vec3<double>::UnitY()))));
+  const std::string path =
+      write(dir, "gripper.urdf",
+            robot(massless("base") + link("l1", 2) + link("hand", 0.7) + link("left", 0.1) +
+                  link("right", 0.1) + joint("j1", "revolute", "base", "l1") +
+                  joint("wrist", "fixed", "l1", "hand", Vec3<double>(0, 0, 0.3)) +
+                  joint("finger_left", "prismatic", "hand", "left", Vec3<double>(0, 0.02, 0.05),
+                        Vec3<double>::Zero(), axis(Vec3<double>::UnitY())) +
+                  joint("finger_right", "prismatic", "hand", "right", Vec3<double>(0, -0.02, 0.05),
+                        Vec3<double>::Zero(), axis(-Vec3<double>::UnitY()))));
   EXPECT_EQ(error_of([&] { load_scene(path); }),
-            path + ": a tree, not a chain: no single path from 'base' passes every moving joint "
-                   "(its ends: 'left', 'right'); choose the tip with --tip LINK, and lock the "
-                   "joints off its path with --lock JOINT");
-  EXPECT_EQ(error_of([&] { load_scene(path, UrdfOptions{"left", {}}); }),
-            path + ": joint 'finger_right' (prismatic) moves 'right', a branch off the chain at "
-                   "'hand': the course's chains are serial; lock it with --lock finger_right, or "
-                   "choose a tip beyond it with --tip LINK");
+            path +
+                ": a tree, not a chain: no single path from 'base' passes every moving joint "
+                "(its ends: 'left', 'right'); choose the tip with --tip LINK, and lock the "
+                "joints off its path with --lock JOINT");
+  EXPECT_EQ(error_of([&] {
+              load_scene(path, UrdfOptions{"left", {}});
+            }),
+            path +
+                ": joint 'finger_right' (prismatic) moves 'right', a branch off the chain at "
+                "'hand': the course's chains are serial; lock it with --lock finger_right, or "
+                "choose a tip beyond it with --tip LINK");
   const Scene s = load_scene(path, UrdfOptions{"left", {"finger_right"}});
   EXPECT_EQ(s.model.n(), 2);
   // Both fingers locked: they end the chain at 'hand', merged into it.
@@ -386,28 +386,37 @@ TEST(urdf, MovingSideBranchIsAnErrorAndLockTakesItIn) {
   EXPECT_EQ(t.frames.back().name, "hand");
   EXPECT_DOUBLE_EQ(t.model.body(1).M.mass(), 2 + 0.7 + 0.1 + 0.1);
   expect_convert_round_trip(path, UrdfOptions{"", {"finger_left", "finger_right"}});
-  EXPECT_EQ(error_of([&] { load_scene(path, UrdfOptions{"hand", {}}); }),
-            path + ": joint 'finger_left' (prismatic) moves 'left', beyond the tip 'hand': the "
-                   "course's chains are serial; lock it with --lock finger_left, or choose a "
-                   "tip beyond it with --tip LINK");
-  EXPECT_EQ(error_of([&] { load_scene(path, UrdfOptions{"thumb", {}}); }),
-            path + ": --tip: no link named 'thumb' (links: 'base', 'hand', 'l1', 'left', "
-                   "'right')");
-  EXPECT_EQ(error_of([&] { load_scene(path, UrdfOptions{"", {"pinky"}}); }),
-            path + ": --lock: no joint named 'pinky' (joints: 'finger_left', 'finger_right', "
-                   "'j1', 'wrist')");
+  EXPECT_EQ(error_of([&] {
+              load_scene(path, UrdfOptions{"hand", {}});
+            }),
+            path +
+                ": joint 'finger_left' (prismatic) moves 'left', beyond the tip 'hand': the "
+                "course's chains are serial; lock it with --lock finger_left, or choose a "
+                "tip beyond it with --tip LINK");
+  EXPECT_EQ(error_of([&] {
+              load_scene(path, UrdfOptions{"thumb", {}});
+            }),
+            path +
+                ": --tip: no link named 'thumb' (links: 'base', 'hand', 'l1', 'left', "
+                "'right')");
+  EXPECT_EQ(error_of([&] {
+              load_scene(path, UrdfOptions{"", {"pinky"}});
+            }),
+            path +
+                ": --lock: no joint named 'pinky' (joints: 'finger_left', 'finger_right', "
+                "'j1', 'wrist')");
 }
 
 /// Several ends fixed to one link: the chain ends at that link, the ends merged into it (their
 /// frames are kept only as the chosen tip).
 TEST(urdf, SeveralFixedEndsEndTheChainAtTheirCommonLink) {
   const std::string dir = temp_dir();
-  const std::string path = write(
-      dir, "ends.urdf",
-      robot(massless("base") + link("l1", 2) + massless("tool0") + massless("camera") +
-            joint("j1", "revolute", "base", "l1") +
-            joint("t", "fixed", "l1", "tool0", Vec3<double>(0, 0, 0.2)) +
-            joint("c", "fixed", "l1", "camera", Vec3<double>(0.1, 0, 0))));
+  const std::string path =
+      write(dir, "ends.urdf",
+            robot(massless("base") + link("l1", 2) + massless("tool0") + massless("camera") +
+                  joint("j1", "revolute", "base", "l1") +
+                  joint("t", "fixed", "l1", "tool0", Vec3<double>(0, 0, 0.2)) +
+                  joint("c", "fixed", "l1", "camera", Vec3<double>(0.1, 0, 0))));
   const Scene c = load_scene(path);
   EXPECT_EQ(c.frames.size(), 1u);
   EXPECT_EQ(c.frames.back().name, "l1");
@@ -455,9 +464,10 @@ TEST(urdf, UrdfdomSaysNothing) {
 const std::map<std::string, std::string>& expected_messages() {
   static const std::map<std::string, std::string> table = {
       {"zero_axis", "joint 'j2': axis is zero"},
-      {"planar", "joint 'j1': a planar joint (3 dofs in a plane) has no hinge in the course "
-                 "(revolute, prismatic, helical, universal, spherical, free); lock it with "
-                 "--lock j1"},
+      {"planar",
+       "joint 'j1': a planar joint (3 dofs in a plane) has no hinge in the course "
+       "(revolute, prismatic, helical, universal, spherical, free); lock it with "
+       "--lock j1"},
       {"negative_mass", "link 'l1': inertial: mass -1 is negative"},
       {"zero_mass_with_inertia",
        "link 'l1': inertial: mass 0 with a non-zero inertia (a massless link has neither: leave "
@@ -467,8 +477,9 @@ const std::map<std::string, std::string>& expected_messages() {
       {"inertia_triangle",
        "link 'l1': inertial: inertia principal moments 0.1, 0.1, 0.5 break the triangle "
        "inequality (0.1 + 0.1 < 0.5)"},
-      {"mimic", "joint 'j2': mimics 'j1': the course's hinges have coordinates of their own; "
-                "lock it with --lock j2"},
+      {"mimic",
+       "joint 'j2': mimics 'j1': the course's hinges have coordinates of their own; "
+       "lock it with --lock j2"},
       {"massless_outboard",
        "joint 'j2' (revolute) moves only massless links ('l2', 'tool0'): nothing of mass "
        "outboard of it, its motion is undefined"},
@@ -479,8 +490,9 @@ const std::map<std::string, std::string>& expected_messages() {
        "a tree, not a chain: no single path from 'base' passes every moving joint (its ends: "
        "'a', 'b'); choose the tip with --tip LINK, and lock the joints off its path with --lock "
        "JOINT"},
-      {"not_urdf", "not a valid URDF (urdfdom: Could not find the 'robot' element in the xml "
-                   "file)"},
+      {"not_urdf",
+       "not a valid URDF (urdfdom: Could not find the 'robot' element in the xml "
+       "file)"},
   };
   return table;
 }
@@ -496,7 +508,8 @@ TEST(urdf, EachBadFileHasItsMessage) {
       ADD_FAILURE() << e.path() << " has no expected message in the table";
       continue;
     }
-    EXPECT_EQ(error_of([&] { load_scene(e.path().string()); }), e.path().string() + ": " + it->second);
+    EXPECT_EQ(error_of([&] { load_scene(e.path().string()); }),
+              e.path().string() + ": " + it->second);
   }
   for (const auto& [name, message] : expected_messages())
     EXPECT_TRUE(seen.count(name)) << name << ".urdf is missing";
