@@ -43,6 +43,7 @@
 
 #include "checklist.hpp"
 #include "plot.hpp"
+#include "scenes.hpp"
 #include "soa/chain.hpp"
 #include "soa/chain/energy_structure.hpp"
 #include "soa/scene.hpp"
@@ -1118,18 +1119,10 @@ int main(int argc, char** argv) {
   /// and rated torques are only read here: the recursions never apply them.
   checks.section("12. A real arm holding a payload: the Franka Emika Panda");
   {
-    const std::string panda_path =
-        SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/panda.urdf";
-    soa::Scene panda;
-    std::string why;
-    try {
-      panda = soa::load_scene(panda_path);
-    } catch (const std::exception& e) {
-      why = e.what();
-    }
-    checks.check("panda.urdf loads" + (why.empty() ? std::string() : " (" + why + ")"),
-                 why.empty() && panda.model.nv() == 7);
-    if (why.empty() && panda.model.nv() == 7) {
+    const std::optional<soa::Scene> loaded =
+        soa::lesson::load_lesson3_scene(checks, "panda.urdf", 7);
+    if (loaded) {
+      const soa::Scene& panda = *loaded;
       const Model& pm = panda.model;
       const int pn = pm.n(), pv = pm.nv();
       // Its joints base first, with their limits, and the flange frame.

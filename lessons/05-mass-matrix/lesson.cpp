@@ -35,6 +35,7 @@
 
 #include "checklist.hpp"
 #include "plot.hpp"
+#include "scenes.hpp"
 #include "soa/chain.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
@@ -511,16 +512,10 @@ int main(int argc, char** argv) {
   /// of the lesson 5 page states its range, as the program computes it.
   checks.section("6. a real arm along a motion: the UR5e");
   {
-    soa::Scene ur;
-    std::string why;
-    try {
-      ur = soa::load_scene(SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/ur5e.urdf");
-    } catch (const std::exception& e) {
-      why = e.what();
-    }
-    checks.check("ur5e.urdf loads" + (why.empty() ? std::string() : " (" + why + ")"),
-                 why.empty() && ur.model.nv() == 6);
-    if (why.empty() && ur.model.nv() == 6) {
+    const std::optional<soa::Scene> loaded =
+        soa::lesson::load_lesson3_scene(checks, "ur5e.urdf", 6);
+    if (loaded) {
+      const soa::Scene& ur = *loaded;
       const Model& um = ur.model;
       const int un = um.n(), uv = um.nv();
       // Its joints base first (the frames in file order that keep their hinge).

@@ -44,6 +44,7 @@
 #include "chain_builder.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
+#include "scenes.hpp"
 #include "soa/chain.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
@@ -944,8 +945,7 @@ int main(int argc, char** argv) {
   /// the two routes and the energy drift of both runs, as the program computes them.
   checks.section("8. A real arm falling: the Franka Emika Panda");
   try {
-    const soa::Scene panda =
-        soa::load_scene(SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/panda.urdf");
+    const soa::Scene panda = soa::load_scene(soa::lesson::lesson3_scene("panda.urdf"));
     const Model& pm = panda.model;
     checks.check("panda.urdf: 7 revolute joints", pm.nv() == 7);
     std::vector<int> dof;  // Franka's joint j (base first) is theta[dof[j]]
