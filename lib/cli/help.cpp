@@ -40,6 +40,15 @@ scene; the mapping is on the same page.
 
 )";
 
+constexpr const char* kUrdf = R"(URDF scenes:
+  SCENE may be a URDF file (ROBOT.urdf): the chain from its root link to --tip LINK (default:
+  the one leaf below every moving joint), --lock J1,J2 taking joints as fixed at zero (a
+  gripper's fingers); the bodies are its links, in the order of the chain. URDF has no
+  state: the neutral configuration at rest unless --q, --qd give one. Joint limits are kept,
+  not enforced: a state outside them is reported on stderr.
+
+)";
+
 /// The "State:" block of a verb's help: only the options the verb takes (all of them in
 /// soa --help).
 std::string state_help(std::optional<Verb> verb) {
@@ -95,7 +104,7 @@ std::string state_help(std::optional<Verb> verb) {
     while (!l.empty() && l.back() == ' ') l.pop_back();
     text += l + "\n";
   }
-  return text + "  Quaternions must have norm 1 within 1e-6.\n\n";
+  return text + "  Quaternions must have norm 1 within 1e-6.\n\n" + kUrdf;
 }
 
 constexpr const char* kFrames = R"(Frames and vectors:
