@@ -33,10 +33,10 @@ The scene file gives the chain and its state; its format is on the notes' page "
 files" (docs/scenes.md); at most 1 GiB. Results are JSON on stdout, written once they
 are complete (and every write checked).
 
-A URDF robot description (ROBOT.urdf) is a scene too, for every verb: the chain from its
-root link to --tip LINK (default: the one leaf below every moving joint), links fixed to it
-merged, --lock JOINT,... taking joints as fixed at zero. convert prints the equivalent JSON
-scene; the mapping is on the same page.
+A URDF robot description (ROBOT.urdf) is a scene too, for every verb: the chain from
+its root link to --tip LINK (default: the one leaf below every moving joint), links
+fixed to it merged, --lock JOINT,... taking joints as fixed at zero. convert prints the
+equivalent JSON scene; the mapping is on the same page.
 
 )";
 
