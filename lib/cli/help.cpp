@@ -341,11 +341,11 @@ const std::string& convert_help() {
       std::string(R"(Usage: soa convert ROBOT.urdf [--tip LINK] [--lock JOINT,...] > scene.json
 
 Writes the JSON scene of a URDF file: the serial chain from the root link to the tip
-link, as every verb reads the URDF. Comments say where the URDF was folded: the links fixed to
-the root (the ground), links fixed to the chain off its path (merged into the body they
-hang on), massless links (frames), inertias rotated from their <inertial> frame, joint
-limits and friction (kept, not used by the dynamics). Loading the JSON gives the same
-model, bit for bit.
+link, as every verb reads the URDF. Comments say where the URDF was folded: the links
+fixed to the root (the ground), links fixed to the chain off its path (merged into the
+body they hang on), massless links (frames), inertias rotated from their <inertial>
+frame, joint limits and friction (kept, not used by the dynamics). Loading the JSON
+gives the same model, bit for bit.
 
   --tip LINK        the chain's last link (default: the leaf below every moving joint)
   --lock J1,J2,...  joints taken as fixed at their zero position (a gripper's fingers)
