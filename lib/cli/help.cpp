@@ -44,8 +44,8 @@ constexpr const char* kUrdf = R"(URDF scenes:
   SCENE may be a URDF file (ROBOT.urdf): the chain from its root link to --tip LINK
   (default: the one leaf below every moving joint), --lock J1,J2 taking joints as fixed
   at zero (a gripper's fingers); its bodies are the links of the chain. URDF has no
-  state: the neutral configuration at rest unless --q, --qd give one. Joint limits are
-  kept, not enforced: a state outside them is reported on stderr.
+  state: the neutral configuration at rest unless the options give one. Joint limits
+  are kept, not enforced: a state outside them is reported on stderr.
 )";
 
 /// The "State:" block of a verb's help: only the options the verb takes (all of them in

@@ -807,22 +807,23 @@ TEST(cli_robustness, ViewOfARunThatBlowsUpShowsItUpToTheBlowUp) {
 TEST(cli_robustness, EachVerbsHelpListsOnlyItsOptions) {
   Scratch s;
   const std::vector<std::string> options = {
-      "--q",       "--qd",     "--qdd",        "--tau",         "--body",
-      "--inverse", "--check",  "--integrator", "--dt",          "--tol",
-      "--t-end",   "--out",    "--every",      "--out-dt",      "--operational",
-      "--view",    "--frames", "--trajectory", "--no-velocity", "--no-force"};
+      "--q",           "--qd",         "--qdd",         "--tau",  "--body",   "--inverse",
+      "--check",       "--integrator", "--dt",          "--tol",  "--t-end",  "--out",
+      "--every",       "--out-dt",     "--operational", "--view", "--frames", "--trajectory",
+      "--no-velocity", "--no-force",   "--tip",         "--lock"};
   const std::vector<std::pair<std::string, std::vector<std::string>>> verbs = {
-      {"kinematics", {"--q", "--qd", "--qdd", "--body"}},
-      {"jacobian", {"--q", "--body"}},
-      {"inverse-dynamics", {"--q", "--qd", "--qdd"}},
-      {"forward-dynamics", {"--q", "--qd", "--tau", "--check"}},
-      {"mass-matrix", {"--q", "--inverse", "--operational", "--check"}},
+      {"kinematics", {"--q", "--qd", "--qdd", "--body", "--tip", "--lock"}},
+      {"jacobian", {"--q", "--body", "--tip", "--lock"}},
+      {"inverse-dynamics", {"--q", "--qd", "--qdd", "--tip", "--lock"}},
+      {"forward-dynamics", {"--q", "--qd", "--tau", "--check", "--tip", "--lock"}},
+      {"mass-matrix", {"--q", "--inverse", "--operational", "--check", "--tip", "--lock"}},
       {"simulate",
        {"--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--out", "--every", "--out-dt",
-        "--view", "--frames", "--no-velocity", "--no-force"}},
+        "--view", "--frames", "--no-velocity", "--no-force", "--tip", "--lock"}},
       {"view",
        {"--out", "--q", "--qd", "--integrator", "--dt", "--tol", "--t-end", "--trajectory",
-        "--frames", "--no-velocity", "--no-force"}}};
+        "--frames", "--no-velocity", "--no-force", "--tip", "--lock"}},
+      {"convert", {"--tip", "--lock"}}};
   for (const auto& [verb, takes] : verbs) {
     const Outcome r = soa(s, {verb, "--help"});
     ASSERT_EQ(r.rc, 0);
