@@ -83,9 +83,10 @@ SimulationOptions simulation_options(const Args& a) {
   o.dt = number_of(a.dt, "--dt", 0.0);
   o.tol = number_of(a.tol, "--tol", 0.0);
   o.t_end = number_of(a.t_end, "--t-end", 1.0);
-  if (o.method == Integrator::DormandPrince && !a.tol)
-    throw Error("--tol: dopri5 needs a tolerance (e.g. --tol 1e-8)");
-  if (o.method != Integrator::DormandPrince && !a.dt)
+  if (is_adaptive(o.method) && !a.tol)
+    throw Error(std::string("--tol: ") + integrator_name(o.method) +
+                " needs a tolerance (e.g. --tol 1e-8)");
+  if (!is_adaptive(o.method) && !a.dt)
     throw Error(std::string("--dt: ") + integrator_name(o.method) +
                 " needs a step (e.g. --dt 1e-3)");
   if (a.dt && !(o.dt > 0)) throw Error("--dt: the step must be > 0");

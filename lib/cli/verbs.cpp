@@ -310,7 +310,7 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   }
   // The fixed step as the run takes it: [0, T] divided evenly.
   const double dt =
-      opt_in.method == Integrator::DormandPrince
+      is_adaptive(opt_in.method)
           ? 0.0
           : opt_in.t_end /
                 std::max(1.0, std::ceil(double(opt_in.t_end) / double(opt_in.dt) - 1e-9));
@@ -320,8 +320,7 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     recorder =
         std::make_unique<soa::view::Recorder>(scene, opt_in.t_end, view->frames, view->quantities);
     label = std::string(integrator_name(opt_in.method)) +
-            (opt_in.method == Integrator::DormandPrince ? ", tol = " + num(opt_in.tol)
-                                                        : ", h = " + num(dt) + " s");
+            (is_adaptive(opt_in.method) ? ", tol = " + num(opt_in.tol) : ", h = " + num(dt) + " s");
   }
   std::shared_ptr<const ViewWritten> written;
   // The viewer of what was computed, the last state (at \p t) recorded whatever the budget.
@@ -450,7 +449,7 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     w.member("scene", scene.title);
     w.member("integrator", integrator_name(opt.method));
     w.member("order", integrator_order(opt.method));
-    if (opt.method == Integrator::DormandPrince) {
+    if (is_adaptive(opt.method)) {
       w.member("tol", opt.tol);
     } else {
       w.member("dt", dt);
@@ -465,6 +464,10 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     }
     w.member("steps", sum.steps);
     w.member("rejected_steps", sum.rejected);
+    if (opt.method == Integrator::Esdirk) {
+      w.member("newton_failures", sum.newton_failures);
+      w.member("jacobians", sum.jacobians);
+    }
     w.member("evaluations", sum.evaluations);
     w.member("wall_seconds", sum.wall_seconds);
     w.member("energy_start", sum.energy0);

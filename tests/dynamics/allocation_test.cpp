@@ -9,6 +9,7 @@
 #include "property.hpp"
 #include "random_chain.hpp"
 #include "soa/chain.hpp"
+#include "soa/sim.hpp"
 
 namespace {
 
@@ -66,6 +67,32 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
     soa::Articulated art(m);
     EXPECT_EQ(allocations([&] { soa::articulated_inertias(m, x, ws, art); }), 0)
         << "articulated_inertias, case " << i;
+  }
+}
+
+// The stiff integrator's step (issue 16): nothing per step once the first step has sized
+// its workspace, the Jacobian and its factorization included, on chains of every hinge type
+// with gravity and springs.
+TEST(dynamics_Allocation, NoneInAnEsdirkStep) {
+  Random<double> rnd(44);
+  soa::test::ChainOptions opt;
+  opt.gravity = true;
+  opt.springs = true;
+  opt.all_hinge_types = true;
+  for (int i = 0; i < 10; ++i) {
+    const soa::Model m = soa::test::random_chain(rnd, 1 + i % 6, opt);
+    const soa::State x0 = soa::test::random_state(rnd, m);
+    soa::ChainSystem sys(m, {});
+    soa::Stepper stepper(sys);
+    stepper.set_tolerance(1e-6);
+    soa::State x1 = x0;
+    soa::VecX<double> err;
+    double h = 1e-3;
+    bool ok = true;
+    // Each call with another h refactorizes; every few a Jacobian may be refreshed.
+    EXPECT_EQ(allocations([&] { ok = stepper.esdirk(0.0, h *= 1.1, x0, x1, err) && ok; }), 0)
+        << "esdirk, case " << i;
+    EXPECT_TRUE(ok) << "case " << i;
   }
 }
 

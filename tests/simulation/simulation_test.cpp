@@ -9,7 +9,10 @@
 //   symplectic Euler and implicit midpoint keep it bounded over long runs;
 // - a stiff spring blows up explicit methods with a message giving the time, the step and
 //   the stiffness x step; implicit midpoint runs through at the same step;
-// - no external forces and explicit zero forces give bitwise the same trajectory.
+// - no external forces and explicit zero forces give bitwise the same trajectory;
+// - esdirk4 (issue 16): its tableau meets the order conditions, a fixed step converges at
+//   order 4, the adaptive run at tolerance 1; a stiff, damped spring from its own start runs
+//   at steps far above RK4's stability bound; Newton failures shrink the step.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -300,6 +303,140 @@ TEST(simulation_LeftOut, NoExternalForcesEqualsExplicitZeros) {
                            soa::ExternalForces<double>(std::size_t(s.m.n()), soa::Force::Zero()));
   EXPECT_TRUE((a.x.theta.array() == b.x.theta.array()).all());
   EXPECT_TRUE((a.x.beta.array() == b.x.beta.array()).all());
+}
+
+}  // namespace
+
+namespace {
+
+// ESDIRK4(3)6L[2]SA: c = A 1, the order conditions of b up to order 4 and of the embedded
+// b_hat = b - e up to order 3 (Hairer, Norsett and Wanner I, II.2).
+TEST(simulation_Esdirk, TableauMeetsTheOrderConditions) {
+  using T = soa::Esdirk436;
+  Eigen::Matrix<double, 6, 6> A;
+  Eigen::Matrix<double, 6, 1> b, bh, c;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) A(i, j) = T::a[std::size_t(i)][std::size_t(j)];
+    c[i] = T::c[std::size_t(i)];
+  }
+  b = A.row(5).transpose();
+  bh = b;
+  for (int i = 0; i < 6; ++i) bh[i] -= T::e[std::size_t(i)];
+  const Eigen::Matrix<double, 6, 1> one = Eigen::Matrix<double, 6, 1>::Ones();
+  EXPECT_LE((A * one - c).cwiseAbs().maxCoeff(), 4e-16);
+  auto conditions = [&](const Eigen::Matrix<double, 6, 1>& w, int order) {
+    std::vector<double> r = {w.sum() - 1, w.dot(c) - 0.5};
+    if (order >= 3) {
+      r.push_back(w.dot(c.cwiseProduct(c)) - 1.0 / 3);
+      r.push_back(w.dot(A * c) - 1.0 / 6);
+    }
+    if (order >= 4) {
+      r.push_back(w.dot(c.cwiseProduct(c).cwiseProduct(c)) - 0.25);
+      r.push_back(w.dot(c.cwiseProduct(A * c)) - 1.0 / 8);
+      r.push_back(w.dot(A * c.cwiseProduct(c)) - 1.0 / 12);
+      r.push_back(w.dot(A * (A * c)) - 1.0 / 24);
+    }
+    double worst = 0;
+    for (double x : r) worst = std::max(worst, std::abs(x));
+    return worst;
+  };
+  EXPECT_LE(conditions(b, 4), 1e-15);
+  EXPECT_LE(conditions(bh, 3), 1e-15);
+  EXPECT_GT(conditions(bh, 4), 1e-6) << "the embedded solution is of order 3, not 4";
+}
+
+// A fixed step of esdirk() (stepper called directly) converges at order 4.
+TEST(simulation_Esdirk, FixedStepConvergesAtOrderFour) {
+  for (bool all_types : {false, true}) {
+    const Scene s = chain(101, all_types ? 6 : 3, all_types, true);
+    const double T = 0.5;
+    const State ref = run(s, Integrator::DormandPrince, 0, 1e-13, T).x;
+    std::vector<double> hs, errs;
+    for (int k = 0; k < 4; ++k) {
+      const int n = 25 << k;
+      soa::ChainSystem sys(s.m, {});
+      soa::Stepper stepper(sys);
+      stepper.set_tolerance(1e-13);  // Newton's error (5 % of it) well below the method's
+      State x = s.x0, x1 = s.x0;
+      soa::VecX<double> err;
+      for (int i = 0; i < n; ++i) {
+        ASSERT_TRUE(stepper.esdirk(i * T / n, T / n, x, x1, err));
+        x = x1;
+      }
+      hs.push_back(T / n);
+      errs.push_back(distance(s.m, x, ref));
+    }
+    const double q = slope(hs, errs);
+    std::printf("[ order    ] esdirk4 %s: fitted %.2f (expected 4), errors %.2e %.2e %.2e %.2e\n",
+                all_types ? "every hinge" : "revolute", q, errs[0], errs[1], errs[2], errs[3]);
+    EXPECT_NEAR(q, 4.0, 0.3);
+  }
+}
+
+// The adaptive run: error proportional to the tolerance (local error control with an order
+// 3 estimate of an order 4 method: global error ~ tol^(4/4)).
+TEST(simulation_Esdirk, ErrorFollowsTheTolerance) {
+  const Scene s = chain(101, 4, true, true);
+  const double T = 0.5;
+  const State ref = run(s, Integrator::DormandPrince, 0, 1e-13, T).x;
+  std::vector<double> tols, errs;
+  for (double tol : {1e-5, 1e-7, 1e-9}) {
+    const Trajectory r = run(s, Integrator::Esdirk, 0, tol, T);
+    tols.push_back(tol);
+    errs.push_back(distance(s.m, r.x, ref));
+    std::printf("[ esdirk4  ] tol %.0e: error %.2e, %ld steps, %ld rejected, %ld evaluations\n",
+                tol, errs.back(), r.sum.steps, r.sum.rejected, r.sum.evaluations);
+    EXPECT_LE(errs.back(), 100 * tol);
+  }
+  const double p = slope(tols, errs);
+  std::printf("[ order    ] esdirk4: error vs tolerance %.2f (expected about 1)\n", p);
+  EXPECT_NEAR(p, 1.0, 0.35);
+}
+
+// A stiff, damped spring from its own start (0.1 rad on k = 1e8): esdirk4 reaches t_end at
+// an average step far above RK4's stability bound 2.83 / |lambda|, and agrees with a tight
+// run; RK4 at that average step blows up.
+TEST(simulation_Esdirk, StiffSpringFromItsOwnStart) {
+  soa::Body b;
+  b.name = "stiff";
+  b.M = soa::SpatialInertia::from_cm(1, soa::Vec3<double>(0.1, 0, 0),
+                                     soa::Mat3<double>::Identity() * 0.01);
+  b.hinge.type = soa::HingeType::Revolute;
+  b.hinge.axis = soa::Vec3<double>::UnitZ();
+  b.stiffness = 1e8;
+  b.damping = 1e3;
+  Scene s{soa::Model::from_base_first({b}), {}};
+  s.m.gravity = soa::Vec3<double>(0, -9.81, 0);
+  s.x0 = State::rest(s.m);
+  s.x0.theta[0] = 0.1;
+  const double T = 1, tol = 1e-6;
+  soa::ChainSystem sys(s.m, {});
+  soa::Stepper probe(sys);
+  const double lambda = soa::stiffness_estimate(probe, 1, 0.0, s.x0);
+  const Trajectory r = run(s, Integrator::Esdirk, 0, tol, T);
+  const Trajectory ref = run(s, Integrator::Esdirk, 0, 1e-11, T);
+  const double h_avg = T / double(r.sum.steps), bound = 2.83 / lambda;
+  std::printf(
+      "[ stiff    ] esdirk4: |lambda| %.3g, %ld steps, average step %.3g = %.0f x RK4's "
+      "bound, error %.2e\n",
+      lambda, r.sum.steps, h_avg, h_avg / bound, distance(s.m, r.x, ref.x));
+  EXPECT_GE(h_avg / bound, 100);
+  EXPECT_LE(distance(s.m, r.x, ref.x), 100 * tol);
+  EXPECT_THROW(run(s, Integrator::RK4, h_avg, 0, T), soa::Error);
+}
+
+// A first step far too large for Newton: the step is retried smaller (Newton failures
+// counted), and the run ends as accurate as one started small.
+TEST(simulation_Esdirk, NewtonFailureShrinksTheStep) {
+  Scene s = chain(7, 2, false, false);
+  s.x0.beta.setConstant(8);
+  const double T = 2;
+  const Trajectory small = run(s, Integrator::Esdirk, 1e-4, 1e-8, T);
+  const Trajectory large = run(s, Integrator::Esdirk, T, 1e-8, T);
+  std::printf("[ newton   ] first step %g: %ld Newton failures, %ld rejected; difference %.2e\n", T,
+              large.sum.newton_failures, large.sum.rejected, distance(s.m, large.x, small.x));
+  EXPECT_GT(large.sum.newton_failures, 0);
+  EXPECT_LE(distance(s.m, large.x, small.x), 1e-5);
 }
 
 }  // namespace

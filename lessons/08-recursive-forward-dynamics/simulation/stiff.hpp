@@ -92,6 +92,13 @@ inline cplx stability_function(Integrator m, cplx z) {
              std::pow(z, 6) / 600.0;
     case Integrator::ImplicitMidpoint:
       return (1.0 + z / 2.0) / (1.0 - z / 2.0);
+    case Integrator::Esdirk: {  // stiffly accurate: R(z) = Y_6, (I - zA) Y = 1
+      Eigen::Matrix<cplx, 6, 6> M;
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+          M(i, j) = (i == j ? 1.0 : 0.0) - z * soa::Esdirk436::a[std::size_t(i)][std::size_t(j)];
+      return M.partialPivLu().solve(Eigen::Matrix<cplx, 6, 1>::Ones())[5];
+    }
     case Integrator::SymplecticEuler:
       break;  // not a Runge-Kutta method of y' = Ay: see amplification_radius()
   }

@@ -19,7 +19,14 @@ enum class Integrator {
   RK4,               ///< classical Runge-Kutta, order 4
   DormandPrince,     ///< Dormand-Prince 5(4), adaptive step, order 5
   ImplicitMidpoint,  ///< implicit midpoint (1-stage Gauss), order 2, A-stable, symmetric
+  /// ESDIRK4(3)6L[2]SA, adaptive step, order 4 (embedded 3), L-stable: for stiff springs
+  Esdirk,
 };
+
+/// The methods that choose their own step from a tolerance (`--tol`).
+inline bool is_adaptive(Integrator i) {
+  return i == Integrator::DormandPrince || i == Integrator::Esdirk;
+}
 
 /// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint".
 inline const char* integrator_name(Integrator i) {
@@ -34,6 +41,8 @@ inline const char* integrator_name(Integrator i) {
       return "dopri5";
     case Integrator::ImplicitMidpoint:
       return "implicit-midpoint";
+    case Integrator::Esdirk:
+      return "esdirk4";
   }
   return "?";
 }
@@ -41,10 +50,10 @@ inline const char* integrator_name(Integrator i) {
 /// The integrator called \p name; throws soa::Error listing the names.
 inline Integrator integrator_from_name(const std::string& name) {
   for (Integrator i : {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4,
-                       Integrator::DormandPrince, Integrator::ImplicitMidpoint})
+                       Integrator::DormandPrince, Integrator::ImplicitMidpoint, Integrator::Esdirk})
     if (name == integrator_name(i)) return i;
   throw Error("unknown integrator \"" + name +
-              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint)");
+              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint, esdirk4)");
 }
 
 /// The order of convergence of each integrator.
@@ -59,9 +68,38 @@ inline int integrator_order(Integrator i) {
       return 5;
     case Integrator::ImplicitMidpoint:
       return 2;
+    case Integrator::Esdirk:
+      return 4;
   }
   return 0;
 }
+
+/// The order of an adaptive method's embedded error estimate (0 for fixed-step methods): the
+/// local error estimate is \f$O(h^{q+1})\f$, and the step control uses \f$e^{-1/(q+1)}\f$.
+inline int embedded_order(Integrator i) {
+  return i == Integrator::DormandPrince ? 4 : i == Integrator::Esdirk ? 3 : 0;
+}
+
+/// The Butcher tableau of ESDIRK4(3)6L[2]SA (Kennedy and Carpenter, Appl. Numer. Math. 44,
+/// 2003: the implicit part of ARK4(3)6L[2]SA; SUNDIALS ARKODE's ARK436L2SA_DIRK_6_3_4):
+/// \f$a_{11} = 0\f$ (the first stage explicit), \f$a_{ii} = \gamma = 1/4\f$, the last row is
+/// \f$b\f$ (stiffly accurate), and \f$e = b - \hat b\f$ against the embedded third order.
+struct Esdirk436 {
+  static constexpr int s = 6;
+  static constexpr double gamma = 0.25;
+  static constexpr std::array<std::array<double, 6>, 6> a{
+      {{0, 0, 0, 0, 0, 0},
+       {0.25, 0.25, 0, 0, 0, 0},
+       {8611.0 / 62500, -1743.0 / 31250, 0.25, 0, 0, 0},
+       {5012029.0 / 34652500, -654441.0 / 2922500, 174375.0 / 388108, 0.25, 0, 0},
+       {15267082809.0 / 155376265600, -71443401.0 / 120774400, 730878875.0 / 902184768,
+        2285395.0 / 8070912, 0.25, 0},
+       {82889.0 / 524892, 0, 15625.0 / 83664, 69875.0 / 102672, -2260.0 / 8211, 0.25}}};
+  static constexpr std::array<double, 6> c{0, 0.5, 83.0 / 250, 31.0 / 50, 17.0 / 20, 1};
+  static constexpr std::array<double, 6> e{31666707.0 / 9881966720, 0,
+                                           -256875.0 / 105007616,   -2768025.0 / 128864768,
+                                           169839.0 / 3864644,      -5247.0 / 225920};
+};
 
 /// Steps a ChainSystemT. Every method works in local coordinates around the step's start,
 /// \f$\theta = \theta_0 \oplus u\f$ (retract()), with \f$\dot u\f$ from local_rate(): a
@@ -76,7 +114,10 @@ class StepperT {
         x_{VecX<S>(sys.model().nq()), VecX<S>(nv_)},
         u_(nv_),
         Ku_(7, VecX<S>(nv_)),
-        Kb_(7, VecX<S>(nv_)) {}
+        Kb_(7, VecX<S>(nv_)),
+        ru_(nv_),
+        rud_(nv_),
+        rbd_(nv_) {}
 
   /// One step of an explicit Runge-Kutta method with the Butcher tableau \p a (lower
   /// triangular, s x s), \p b and \p c from \p x0 to \p x1; with \p b_err, also the local
@@ -206,19 +247,171 @@ class StepperT {
 
   /// The full rate \f$(\dot u, \dot\beta)\f$ at local coordinates \p Z = (u, w) around \p x0
   /// (state \f$(\theta_0 \oplus u, \beta_0 + w)\f$), for Newton and stiffness estimates.
+  /// Allocates nothing once \p F has size \f$2n_v\f$.
   void rate_at(S t, const StateT<S>& x0, const VecX<S>& Z, VecX<S>& F) {
-    const VecX<S> u = Z.head(nv_);
-    retract(sys_.model(), x0.theta, u, x_.theta);
+    ru_ = Z.head(nv_);
+    retract(sys_.model(), x0.theta, ru_, x_.theta);
     x_.beta = x0.beta + Z.tail(nv_);
     F.resize(2 * nv_);
-    VecX<S> bd(nv_), ud(nv_);
-    sys_.acceleration(t, x_, bd);
-    local_rate(sys_.model(), x_.theta, u, x_.beta, ud);
-    F.head(nv_) = ud;
-    F.tail(nv_) = bd;
+    sys_.acceleration(t, x_, rbd_);
+    local_rate(sys_.model(), x_.theta, ru_, x_.beta, rud_);
+    F.head(nv_) = rud_;
+    F.tail(nv_) = rbd_;
+  }
+
+  /// Sets the scales of the error and Newton norms of esdirk(): component i of
+  /// \f$(u, \beta)\f$ counts as \f$e_i / w_i\f$, \f$w_i = \mathrm{tol}\f$ for the local
+  /// coordinates, \f$\mathrm{tol}(1 + |\beta_i|)\f$ for velocities (as dopri5's control).
+  void set_tolerance(S tol) { tol_ = tol; }
+
+  /// What the last esdirk() call did when it returned false.
+  struct NewtonFailure {
+    int stage = 0;          ///< the stage whose Newton iteration failed (2 ... 6)
+    S residual = S(0);      ///< the last Newton correction, in the tolerance's scaled norm
+    bool diverged = false;  ///< the corrections grew (else: too slow)
+  };
+  const NewtonFailure& newton_failure() const { return failure_; }
+  /// Jacobians computed (each \f$2n_v\f$ forward dynamics calls) and LU factorizations.
+  long jacobians() const { return jacobians_; }
+  long factorizations() const { return factorizations_; }
+
+  /// ESDIRK4(3)6L[2]SA (Kennedy and Carpenter, Appl. Numer. Math. 44, 2003; the implicit
+  /// table of ARK4(3)6L[2]SA, as SUNDIALS ARKODE has it): six stages, the first explicit,
+  /// the others \f$Z_i = h\sum_{j<i} a_{ij} F_j + h\gamma F(Z_i)\f$ with \f$\gamma = 1/4\f$,
+  /// stiffly accurate (\f$Z_6\f$ is the step), L-stable, order 4 with an embedded order 3.
+  /// Each stage is solved by simplified Newton with the matrix \f$I - h\gamma J\f$, \f$J\f$
+  /// the Jacobian of the rate by forward differences (\f$2n_v\f$ rate evaluations) kept from
+  /// step to step and refreshed when Newton converges slowly or fails; the matrix is
+  /// factorized again when h changes. \p err gets the embedded error estimate, filtered by
+  /// \f$(I - h\gamma J)^{-1}\f$ (Hairer and Wanner, Solving ODEs II, IV.8) so that stiff
+  /// components do not inflate it. Returns false when Newton fails with a fresh Jacobian
+  /// (newton_failure() says how): the caller takes a smaller step. Allocates nothing once
+  /// the first call has sized the workspace.
+  bool esdirk(S t, S h, const StateT<S>& x0, StateT<S>& x1, VecX<S>& err) {
+    static constexpr int s = Esdirk436::s;
+    static constexpr double g = Esdirk436::gamma;
+    const auto& a = Esdirk436::a;
+    const auto& c = Esdirk436::c;
+    const auto& e = Esdirk436::e;
+    const int n2 = 2 * nv_;
+    if (int(Zs_.size()) != s || Zs_[0].size() != n2) {
+      Zs_.assign(s, VecX<S>::Zero(n2));
+      Fs_.assign(s, VecX<S>::Zero(n2));
+      base_.setZero(n2);
+      r_.setZero(n2);
+      dZ_.setZero(n2);
+      Fp_.setZero(n2);
+      scale_.setZero(n2);
+      J_.setZero(n2, n2);
+      A_.setZero(n2, n2);
+      lu_ = Eigen::PartialPivLU<MatX<S>>(n2);
+      jac_valid_ = false;
+    }
+    for (int i = 0; i < nv_; ++i) {
+      scale_[i] = tol_;
+      scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
+    }
+    Zs_[0].setZero();
+    rate_at(t, x0, Zs_[0], Fs_[0]);
+    bool fresh = false;
+    if (!jac_valid_ || refresh_) {
+      jacobian(t, x0);
+      fresh = true;
+    }
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      if (!(lu_h_ == h) || fresh_lu_needed_) factorize(h * S(g));
+      bool converged = true;
+      for (int i = 1; i < s && converged; ++i) {
+        base_.setZero();
+        for (int j = 0; j < i; ++j)
+          if (a[std::size_t(i)][std::size_t(j)] != 0.0)
+            base_ += (h * S(a[std::size_t(i)][std::size_t(j)])) * Fs_[std::size_t(j)];
+        VecX<S>& Z = Zs_[std::size_t(i)];
+        Z = base_ + (h * S(g)) * Fs_[std::size_t(i - 1)];  // predictor
+        converged = newton(t + S(c[std::size_t(i)]) * h, h * S(g), x0, i, Z);
+        if (converged)  // F_i from the stage equation, not one more evaluation
+          Fs_[std::size_t(i)] = (Z - base_) / (h * S(g));
+      }
+      if (converged) break;
+      if (fresh) return false;  // a fresh Jacobian did not help: a smaller step
+      jacobian(t, x0);
+      fresh = true;
+    }
+    u_ = Zs_[s - 1].head(nv_);
+    x1.beta = x0.beta + Zs_[s - 1].tail(nv_);
+    finish(x0.theta, x1);
+    r_.setZero();
+    for (int j = 0; j < s; ++j)
+      if (e[std::size_t(j)] != 0.0) r_ += (h * S(e[std::size_t(j)])) * Fs_[std::size_t(j)];
+    err.resize(n2);
+    err = lu_.solve(r_);
+    return true;
   }
 
  private:
+  // J = dF/dZ at Z = 0 around x0 by forward differences, column by column (2 n_v rates).
+  void jacobian(S t, const StateT<S>& x0) {
+    const int n2 = 2 * nv_;
+    r_.setZero();
+    for (int i = 0; i < n2; ++i) {
+      const S d = std::sqrt(eps<S>()) * (i < nv_ ? S(1) : S(1) + std::abs(x0.beta[i - nv_]));
+      r_[i] = d;
+      rate_at(t, x0, r_, Fp_);
+      J_.col(i) = (Fp_ - Fs_[0]) / d;
+      r_[i] = S(0);
+    }
+    ++jacobians_;
+    jac_valid_ = true;
+    refresh_ = false;
+    fresh_lu_needed_ = true;
+  }
+  // LU of I - h gamma J.
+  void factorize(S hg) {
+    A_ = -hg * J_;
+    A_.diagonal().array() += S(1);
+    lu_.compute(A_);
+    lu_h_ = hg * S(4);  // h (gamma = 1/4)
+    fresh_lu_needed_ = false;
+    ++factorizations_;
+  }
+  // The scaled RMS norm of a correction.
+  S scaled_norm(const VecX<S>& v) const {
+    return std::sqrt((v.array() / scale_.array()).square().mean());
+  }
+  // Simplified Newton for stage i: Z = base_ + hg F(Z). Converged when the estimated
+  // distance to the solution, theta/(1 - theta) |dZ| (theta the contraction rate), is below
+  // 0.05 in the tolerance's norm (Hairer and Wanner IV.8); at most 10 iterations.
+  bool newton(S t, S hg, const StateT<S>& x0, int stage, VecX<S>& Z) {
+    S last = S(0), theta = S(0);
+    for (int it = 0; it < 10; ++it) {
+      rate_at(t, x0, Z, Fp_);
+      r_ = Z - base_ - hg * Fp_;
+      dZ_ = lu_.solve(r_);
+      Z -= dZ_;
+      const S size = scaled_norm(dZ_);
+      if (!std::isfinite(double(size)) || !Z.allFinite()) {
+        failure_ = {stage, size, true};
+        return false;
+      }
+      if (it > 0) {
+        theta = size / last;
+        if (theta >= S(1)) {
+          failure_ = {stage, size, true};
+          refresh_ = true;
+          return false;
+        }
+        if (theta > S(0.5)) refresh_ = true;  // slow: a new Jacobian next step
+        if (theta / (S(1) - theta) * size <= S(0.05)) return true;
+      } else if (size <= S(0.05) * S(1e-2)) {
+        return true;
+      }
+      last = size;
+    }
+    failure_ = {stage, last, false};
+    refresh_ = true;
+    return false;
+  }
+
   // Stage i at local coordinates u_ and velocity x_.beta: K_u[i], K_beta[i].
   void stage(S t, const VecX<S>& theta0, int i) {
     retract(sys_.model(), theta0, u_, x_.theta);
@@ -239,6 +432,16 @@ class StepperT {
   StateT<S> x_;
   VecX<S> u_;
   std::vector<VecX<S>> Ku_, Kb_;
+  VecX<S> ru_, rud_, rbd_;  // rate_at()
+  // esdirk(): stages, Newton, Jacobian and its factorization.
+  std::vector<VecX<S>> Zs_, Fs_;
+  VecX<S> base_, r_, dZ_, Fp_, scale_;
+  MatX<S> J_, A_;
+  Eigen::PartialPivLU<MatX<S>> lu_;
+  S lu_h_ = S(0), tol_ = S(1e-6);
+  bool jac_valid_ = false, refresh_ = false, fresh_lu_needed_ = true;
+  long jacobians_ = 0, factorizations_ = 0;
+  NewtonFailure failure_;
 };
 using Stepper = StepperT<double>;
 

@@ -17,7 +17,7 @@ template <class S>
 struct SimulationOptionsT {
   Integrator method = Integrator::RK4;
   S dt = S(0);     ///< fixed step (every method but dopri5); dopri5's first step if set
-  S tol = S(0);    ///< dopri5: relative and absolute tolerance of the local error
+  S tol = S(0);    ///< dopri5, esdirk4: relative and absolute tolerance of the local error
   S t_end = S(1);  ///< integrate over [0, t_end]
   /// A run whose \f$\|\beta\|_\infty\f$ exceeds this factor times \f$\max(1,
   /// \|\beta_0\|_\infty)\f$, or whose state is not finite, has blown up.
@@ -34,7 +34,9 @@ using SimulationOptions = SimulationOptionsT<double>;
 /// What a run did.
 struct SimulationSummary {
   long steps = 0;               ///< accepted steps
-  long rejected = 0;            ///< rejected steps (dopri5)
+  long rejected = 0;            ///< rejected steps (dopri5, esdirk4), Newton failures included
+  long newton_failures = 0;     ///< esdirk4: steps retried smaller because Newton failed
+  long jacobians = 0;           ///< esdirk4: Jacobians computed (2 n_v evaluations each)
   long evaluations = 0;         ///< forward dynamics calls
   double wall_seconds = 0;      ///< wall time of the loop
   double energy0 = 0;           ///< energy at t = 0
@@ -92,6 +94,9 @@ inline const char* stability_note(Integrator i) {
              "implicit-midpoint";
     case Integrator::ImplicitMidpoint:
       return "implicit midpoint is stable at any step; Newton's method needs a smaller --dt";
+    case Integrator::Esdirk:
+      return "esdirk4 is L-stable at any step and shrinks it when Newton fails: a blow-up here "
+             "is in the motion itself, or the tolerance is too loose (--tol)";
   }
   return "";
 }
@@ -103,8 +108,10 @@ inline const char* stability_note(Integrator i) {
 template <class S, class Observer>
 SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationOptionsT<S>& opt,
                            Observer&& observe) {
-  const bool adaptive = opt.method == Integrator::DormandPrince;
-  if (adaptive && !(opt.tol > S(0))) throw Error("simulate: dopri5 needs a tolerance (--tol)");
+  const bool adaptive = is_adaptive(opt.method);
+  if (adaptive && !(opt.tol > S(0)))
+    throw Error(std::string("simulate: ") + integrator_name(opt.method) +
+                " needs a tolerance (--tol)");
   if (!adaptive && !(opt.dt > S(0))) throw Error("simulate: a fixed-step method needs --dt > 0");
   if (!(opt.t_end >= S(0))) throw Error("simulate: the end time must be >= 0");
   if (!adaptive && !(double(opt.t_end) / double(opt.dt) <= kMaxSteps)) {
@@ -117,6 +124,9 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   }
   const int nv = sys.model().nv();
   StepperT<S> stepper(sys);
+  stepper.set_tolerance(opt.tol);
+  // The step control's exponent: the local error estimate is O(h^(q+1)).
+  const S exponent = adaptive ? S(-1) / S(embedded_order(opt.method) + 1) : S(0);
   SimulationSummary sum;
   const long evals0 = sys.evaluations();
   const auto start = std::chrono::steady_clock::now();
@@ -173,11 +183,29 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
         case Integrator::ImplicitMidpoint:
           ok = stepper.implicit_midpoint(t, h, x, x1);
           break;
+        case Integrator::Esdirk:
+          ok = stepper.esdirk(t, h, x, x1, err);
+          break;
       }
     } catch (const Error& e) {
       const std::string msg = e.what();
       if (msg.find("singular") != std::string::npos) throw;
       blow_up(msg, h);
+    }
+    if (!ok && opt.method == Integrator::Esdirk) {  // a smaller step
+      ++sum.rejected;
+      ++sum.newton_failures;
+      h *= S(0.25);
+      if (h < S(16) * eps<S>() * std::max(S(1), t)) {
+        const auto& f = stepper.newton_failure();
+        char what[200];
+        std::snprintf(what, sizeof what,
+                      "Newton's method did not converge at stage %d even at the smallest step "
+                      "(last correction %.3g in units of the tolerance, %s)",
+                      f.stage, double(f.residual), f.diverged ? "diverging" : "too slow");
+        blow_up(what, h);
+      }
+      continue;
     }
     if (!ok) blow_up("Newton's method did not converge", h);
     if (adaptive) {
@@ -190,7 +218,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       }
       const S e = nv > 0 ? std::sqrt(e2 / S(2 * nv)) : S(0);
       const S factor =
-          std::min(S(5), std::max(S(0.2), S(0.9) * std::pow(std::max(e, S(1e-10)), S(-0.2))));
+          std::min(S(5), std::max(S(0.2), S(0.9) * std::pow(std::max(e, S(1e-10)), exponent)));
       if (!(e <= S(1)) && std::isfinite(double(e))) {
         ++sum.rejected;
         h *= factor;
@@ -226,6 +254,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     observe(t, x);
   }
   sum.t = double(t);
+  sum.jacobians = stepper.jacobians();
   sum.evaluations = sys.evaluations() - evals0;
   sum.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
