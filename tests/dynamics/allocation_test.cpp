@@ -70,10 +70,10 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
   }
 }
 
-// The stiff integrator's step (issue 16): nothing per step once the first step has sized
-// its workspace, the Jacobian and its factorization included, on chains of every hinge type
-// with gravity and springs.
-TEST(dynamics_Allocation, NoneInAnEsdirkStep) {
+// The implicit integrators' steps (issue 16): nothing per step once the first step has
+// sized the workspace, the Jacobian and its factorization included, on chains of every
+// hinge type with gravity and springs.
+TEST(dynamics_Allocation, NoneInAnImplicitStep) {
   Random<double> rnd(44);
   soa::test::ChainOptions opt;
   opt.gravity = true;
@@ -92,6 +92,10 @@ TEST(dynamics_Allocation, NoneInAnEsdirkStep) {
     // Each call with another h refactorizes; every few a Jacobian may be refreshed.
     EXPECT_EQ(allocations([&] { ok = stepper.esdirk(0.0, h *= 1.1, x0, x1, err) && ok; }), 0)
         << "esdirk, case " << i;
+    EXPECT_TRUE(ok) << "case " << i;
+    soa::Stepper midpoint(sys);
+    EXPECT_EQ(allocations([&] { ok = midpoint.implicit_midpoint(0.0, 1e-3, x0, x1) && ok; }), 0)
+        << "implicit_midpoint, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
   }
 }

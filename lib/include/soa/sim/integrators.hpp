@@ -204,31 +204,41 @@ class StepperT {
   /// Implicit midpoint: with \f$Z = (u, w)\f$ the step in local coordinates and velocity,
   /// \f$Z = h\,F(Z/2)\f$, \f$F\f$ the rate at \f$(\theta_0 \oplus u/2,\ \beta_0 + w/2)\f$;
   /// solved by Newton's method with the Jacobian of the dynamics by finite differences
-  /// (frozen during the step). Returns false when Newton does not converge.
+  /// (frozen during the step). Returns false when Newton does not converge. Allocates nothing
+  /// once the first call has sized the workspace (shared with esdirk()).
   bool implicit_midpoint(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
     const int n2 = 2 * nv_;
-    VecX<S> Z = VecX<S>::Zero(n2), F(n2), Fp(n2), dZ(n2);
+    size_workspace();
+    jac_valid_ = false;  // J_ and lu_ hold this method's matrix now, not esdirk()'s
+    fresh_lu_needed_ = true;
+    VecX<S>& Z = Zs_[0];
+    VecX<S>& F = Fs_[0];
+    Z.setZero();
     // J = I - (h/2) dF/dZ at the start of the step, by forward differences.
-    MatX<S> J(n2, n2);
     rate_at(t + h / 2, x0, Z, F);
+    r_.setZero();
     for (int i = 0; i < n2; ++i) {
-      VecX<S> Zi = Z;
       const S d = std::sqrt(eps<S>());
-      Zi[i] += d;
-      rate_at(t + h / 2, x0, Zi, Fp);
-      J.col(i) = -(h / S(2)) * (Fp - F) / d;
-      J(i, i) += S(1);
+      r_[i] = d;
+      rate_at(t + h / 2, x0, r_, Fp_);
+      r_[i] = S(0);
+      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
+      A_(i, i) += S(1);
     }
-    const Eigen::PartialPivLU<MatX<S>> lu(J);
+    lu_.compute(A_);
     // Simplified Newton; stops when the estimated distance to the solution,
     // theta/(1 - theta) |dZ| with theta the contraction rate, is at rounding level
     // (Hairer and Wanner, Solving ODEs II, IV.8).
     S last = S(0);
     for (int it = 0; it < 50; ++it) {
-      if (it > 0) rate_at(t + h / 2, x0, (Z / S(2)).eval(), F);
-      dZ = lu.solve(Z - h * F);
-      Z -= dZ;
-      const S size = dZ.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
+      if (it > 0) {
+        base_ = Z / S(2);
+        rate_at(t + h / 2, x0, base_, F);
+      }
+      r_ = Z - h * F;
+      dZ_ = lu_.solve(r_);
+      Z -= dZ_;
+      const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
       if (!Z.allFinite()) return false;
       if (size <= tol) break;
       if (it > 0) {
@@ -293,20 +303,7 @@ class StepperT {
     const auto& a = Esdirk436::a;
     const auto& c = Esdirk436::c;
     const auto& e = Esdirk436::e;
-    const int n2 = 2 * nv_;
-    if (int(Zs_.size()) != s || Zs_[0].size() != n2) {
-      Zs_.assign(s, VecX<S>::Zero(n2));
-      Fs_.assign(s, VecX<S>::Zero(n2));
-      base_.setZero(n2);
-      r_.setZero(n2);
-      dZ_.setZero(n2);
-      Fp_.setZero(n2);
-      scale_.setZero(n2);
-      J_.setZero(n2, n2);
-      A_.setZero(n2, n2);
-      lu_ = Eigen::PartialPivLU<MatX<S>>(n2);
-      jac_valid_ = false;
-    }
+    size_workspace();
     for (int i = 0; i < nv_; ++i) {
       scale_[i] = tol_;
       scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
@@ -343,12 +340,28 @@ class StepperT {
     r_.setZero();
     for (int j = 0; j < s; ++j)
       if (e[std::size_t(j)] != 0.0) r_ += (h * S(e[std::size_t(j)])) * Fs_[std::size_t(j)];
-    err.resize(n2);
+    err.resize(2 * nv_);
     err = lu_.solve(r_);
     return true;
   }
 
  private:
+  // The implicit methods' workspace, sized once.
+  void size_workspace() {
+    const int n2 = 2 * nv_;
+    if (Zs_.size() == std::size_t(Esdirk436::s) && Zs_[0].size() == n2) return;
+    Zs_.assign(Esdirk436::s, VecX<S>::Zero(n2));
+    Fs_.assign(Esdirk436::s, VecX<S>::Zero(n2));
+    base_.setZero(n2);
+    r_.setZero(n2);
+    dZ_.setZero(n2);
+    Fp_.setZero(n2);
+    scale_.setZero(n2);
+    J_.setZero(n2, n2);
+    A_.setZero(n2, n2);
+    lu_ = Eigen::PartialPivLU<MatX<S>>(n2);
+    jac_valid_ = false;
+  }
   // J = dF/dZ at Z = 0 around x0 by forward differences, column by column (2 n_v rates).
   void jacobian(S t, const StateT<S>& x0) {
     const int n2 = 2 * nv_;
