@@ -189,15 +189,16 @@ class Converter {
       }
       // Links fixed to this one off the chain: rigid mass.
       SpatialInertia M = inertia_of(e);
+      bool merged_mass = false;
       for (const urdf::LinkSharedPtr& c : link.child_links) {
         if (i + 1 < path.size() && c.get() == path[i + 1]) continue;
         std::vector<std::string> merged;
         const SpatialInertia side = branch_inertia(*c, Pose(), link, merged);
-        if (side.mass() > 0) M = M + side;
+        if (side.mass() > 0) M = M + side, merged_mass = true;
         e.notes.push_back("merged, fixed to it off the chain: " + join(merged) +
                           (side.mass() > 0 ? " (" + brief(side.mass()) + " kg)" : " (massless)"));
       }
-      set_inertia(M, e);
+      if (merged_mass) set_inertia(M, e);  // else the link's own numbers, as the file has them
       entries_.push_back(std::move(e));
     }
     check_moves_mass();
@@ -356,10 +357,8 @@ class Converter {
   static SpatialInertia inertia_of(const Entry& e) {
     return e.massless ? SpatialInertia() : SpatialInertia::from_cm(e.mass, e.com, e.J);
   }
-  /// The entry's mass, com and J(C) from \p M about its frame.
+  /// The entry's mass, com and J(C) from \p M about its frame (of positive mass).
   static void set_inertia(const SpatialInertia& M, Entry& e) {
-    if (!(M.mass() > 0)) return;
-    if (!e.massless && M.mass() == e.mass && M.h() == e.mass * e.com) return;  // nothing merged
     e.massless = false;
     e.mass = M.mass();
     e.com = M.p();

@@ -316,7 +316,7 @@ class StepperT {
       fresh = true;
     }
     for (int attempt = 0; attempt < 2; ++attempt) {
-      if (!(lu_h_ == h) || fresh_lu_needed_) factorize(h * S(g));
+      if (!(lu_hg_ == h * S(g)) || fresh_lu_needed_) factorize(h * S(g));
       bool converged = true;
       for (int i = 1; i < s && converged; ++i) {
         base_.setZero();
@@ -383,7 +383,7 @@ class StepperT {
     A_ = -hg * J_;
     A_.diagonal().array() += S(1);
     lu_.compute(A_);
-    lu_h_ = hg * S(4);  // h (gamma = 1/4)
+    lu_hg_ = hg;
     fresh_lu_needed_ = false;
     ++factorizations_;
   }
@@ -451,7 +451,7 @@ class StepperT {
   VecX<S> base_, r_, dZ_, Fp_, scale_;
   MatX<S> J_, A_;
   Eigen::PartialPivLU<MatX<S>> lu_;
-  S lu_h_ = S(0), tol_ = S(1e-6);
+  S lu_hg_ = S(0), tol_ = S(1e-6);  // the h gamma of lu_
   bool jac_valid_ = false, refresh_ = false, fresh_lu_needed_ = true;
   long jacobians_ = 0, factorizations_ = 0;
   NewtonFailure failure_;
