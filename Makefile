@@ -26,7 +26,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # missing ones are installed.
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
-  libjs-three chromium pkgconf liburdfdom-dev
+  libjs-three chromium pkgconf liburdfdom-dev libsundials-dev
 
 .PHONY: all run test exercises stub-sums docs bench deps configure build clean format
 
