@@ -38,6 +38,8 @@ struct Args {
   std::optional<std::string> tip, lock;
   /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
   std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
+  /// simulate, view: --stiffness stop|warn|off (the monitor of the explicit methods)
+  std::optional<std::string> stiffness;
   /// The viewer: simulate --view DIR; view --trajectory FILE; both --frames N
   std::optional<std::string> view, trajectory, frames;
   bool inverse = false;  ///< mass-matrix --inverse
@@ -45,7 +47,7 @@ struct Args {
   bool no_velocity = false, no_force = false;  ///< view, simulate --view: leave V, f out
 
   /// view: a run is simulated (--integrator, --dt, --tol or --t-end given).
-  bool simulates() const { return integrator || dt || tol || t_end; }
+  bool simulates() const { return integrator || dt || tol || t_end || stiffness; }
 };
 
 /// True when the verb \p v takes \p option ("--q", "--inverse", ...).

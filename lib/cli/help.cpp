@@ -260,7 +260,7 @@ const std::string& simulate_help() {
   static const std::string text =
       std::string(
           R"(Usage: soa simulate SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
-                    [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
+                    [--stiffness stop|warn|off] [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
                     [--view DIR [--frames N] [--no-velocity] [--no-force]]
 
 Integrates the scene's forward dynamics (lesson 8) from its state (or --q, --qd) over
@@ -283,6 +283,12 @@ run ends, complete (it is written beside the target and renamed), never the scen
 On stdout, JSON: steps, rejected steps, forward-dynamics evaluations, wall time, energy
 at start and end and its largest drift, the final q, qd, and the rows written. A progress
 bar goes to stderr for long runs when it is a terminal.
+The explicit fixed-step methods (euler, symplectic-euler, rk4) are watched by a stiffness
+monitor: h lambda, lambda the dominant eigenvalue of the dynamics' Jacobian by power
+iteration, at the start, every 100 steps (rk4: 25) and at the end, about 5 % more
+evaluations; beyond the method's stability bound the run stops (exit code 1) with h lambda
+(--stiffness stop, the default), or goes on with a line on stderr and "warning" in the
+JSON's "stiffness" (warn); off spends nothing on it.
 A run that blows up stops (exit code 1) with the time, the step and the estimated
 stiffness x step; the rows before the blow-up are kept in the --out file and the message
 says so. Ctrl-C (SIGINT) or SIGTERM stops the run at the end of a step: the rows so far
@@ -304,14 +310,14 @@ const std::string& view_help() {
   static const std::string text =
       std::string(
           R"(Usage: soa view SCENE.json --out DIR [--q V,...] [--qd V,...]
-                [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
-                [--frames N] [--no-velocity] [--no-force]
+                [--integrator NAME (--dt H | --tol E) [--t-end T] [--stiffness P]
+                 | --trajectory F.csv] [--frames N] [--no-velocity] [--no-force]
 
 Writes the 3D viewer of the chain into the folder DIR: open DIR/index.html in a browser
 (from file://: nothing is loaded from the network). What it shows:
   the state      the scene's, or --q, --qd: one frame
-  a simulation   --integrator, --dt or --tol, --t-end, as soa simulate takes them (soa
-                 simulate --help), recorded as it runs
+  a simulation   --integrator, --dt or --tol, --t-end, --stiffness, as soa simulate takes
+                 them (soa simulate --help), recorded as it runs
   a trajectory   --trajectory F.csv, written by soa simulate --out for this scene
 A run is shown as at most N frames (--frames N, 400 when absent, 2 to 100000): the first
 state at or after each multiple of T / (N - 1), and the last state always; the page's

@@ -94,6 +94,14 @@ SimulationOptions simulation_options(const Args& a) {
   if (a.tol && !(o.tol < 1))
     throw Error("--tol: a relative tolerance must be below 1 (got " + *a.tol + ")");
   if (!(o.t_end >= 0)) throw Error("--t-end: the end time must be >= 0");
+  if (a.stiffness) {
+    const std::string& p = *a.stiffness;
+    if (p != "stop" && p != "warn" && p != "off")
+      throw Error("--stiffness: expected stop, warn or off (got \"" + p + "\")");
+    o.stiffness = p == "stop"   ? StiffnessPolicy::Stop
+                  : p == "warn" ? StiffnessPolicy::Warn
+                                : StiffnessPolicy::Off;
+  }
   return o;
 }
 
@@ -254,6 +262,8 @@ Result run(const Args& a) {
     set_stage("checking the result");
     if (!all_finite(r.emit))  // never a silent NaN: huge values overflow
       throw Error("result: not finite (an overflow: are q, qd, qdd, tau too large?)");
+    if (r.summary && !r.summary->stiffness_warning.empty())
+      r.note = join_notes(r.note, r.summary->stiffness_warning);
     r.note = join_notes(r.note, outside_limits(s, x));
     set_stage("writing the result");
     FdSink out(STDOUT_FILENO, "stdout");

@@ -469,6 +469,14 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
       w.member("jacobians", sum.jacobians);
     }
     w.member("evaluations", sum.evaluations);
+    if (sum.stiffness_checks > 0) {
+      w.key("stiffness");
+      w.begin_object();
+      w.member("checks", sum.stiffness_checks);
+      w.member("max_h_lambda", sum.max_h_lambda);
+      if (!sum.stiffness_warning.empty()) w.member("warning", sum.stiffness_warning);
+      w.end_object();
+    }
     w.member("wall_seconds", sum.wall_seconds);
     w.member("energy_start", sum.energy0);
     w.member("energy_end", sum.energy1);

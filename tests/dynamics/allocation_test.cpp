@@ -2,6 +2,7 @@
 // (the developers' guide): global operator new is counted around each call.
 #include <gtest/gtest.h>
 
+#include <complex>
 #include <cstdlib>
 #include <vector>
 
@@ -97,6 +98,27 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
     EXPECT_EQ(allocations([&] { ok = midpoint.implicit_midpoint(0.0, 1e-3, x0, x1) && ok; }), 0)
         << "implicit_midpoint, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
+  }
+}
+
+// The stiffness monitor of soa::simulate (issue 16): an Arnoldi estimate of the dominant
+// eigenvalue, first and later checks, allocates nothing once built.
+TEST(dynamics_Allocation, NoneInAStiffnessCheck) {
+  Random<double> rnd(45);
+  soa::test::ChainOptions opt;
+  opt.gravity = true;
+  opt.springs = true;
+  opt.all_hinge_types = true;
+  for (int i = 0; i < 10; ++i) {
+    const soa::Model m = soa::test::random_chain(rnd, 1 + i % 6, opt);
+    const soa::State x = soa::test::random_state(rnd, m);
+    soa::ChainSystem sys(m, {});
+    soa::Stepper stepper(sys);
+    soa::DominantEigenvalueT<double> dominant(m.nv());
+    std::complex<double> l;
+    EXPECT_EQ(allocations([&] { l = dominant(stepper, 0.0, x, 24); }), 0) << "first, case " << i;
+    EXPECT_EQ(allocations([&] { l = dominant(stepper, 0.0, x, 4); }), 0) << "later, case " << i;
+    EXPECT_GT(std::abs(l), 0) << "case " << i;
   }
 }
 

@@ -18,9 +18,13 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <complex>
 
 #include "property.hpp"
 #include "random_chain.hpp"
@@ -201,7 +205,8 @@ TEST(simulation_Energy, SymplecticEulerAndMidpointStayBounded) {
   }
 }
 
-std::string blow_up_message(Integrator I, double dt) {
+std::string blow_up_message(Integrator I, double dt,
+                            soa::StiffnessPolicy policy = soa::StiffnessPolicy::Off) {
   // One pendulum with a stiff spring: omega = sqrt(k / J) ~ 1e4 rad/s.
   soa::Body b;
   b.name = "stiff";
@@ -212,8 +217,14 @@ std::string blow_up_message(Integrator I, double dt) {
   Scene s{soa::Model::from_base_first({b}), {}};
   s.x0 = State::rest(s.m);
   s.x0.theta[0] = 0.1;
+  soa::ChainSystem sys(s.m, {});
+  soa::SimulationOptions opt;
+  opt.method = I;
+  opt.dt = dt;
+  opt.stiffness = policy;
+  State x = s.x0;
   try {
-    run(s, I, dt, 0, 1);
+    soa::simulate(sys, x, opt, [](double, const State&) {});
   } catch (const soa::Error& e) {
     return e.what();
   }
@@ -235,6 +246,170 @@ TEST(simulation_BlowUp, ExplicitMethodsStopWithADiagnostic) {
   }
   EXPECT_EQ(blow_up_message(Integrator::ImplicitMidpoint, 1e-3), "(no error)");
   EXPECT_EQ(blow_up_message(Integrator::RK4, 1e-4), "(no error)");  // h omega ~ 0.6
+}
+
+// The stiff pendulum of blow_up_message(): omega = sqrt(k / I), I its inertia about the hinge
+// from the kinetic energy at a unit rate.
+double stiff_omega() {
+  soa::Body b;
+  b.M = soa::SpatialInertia::from_cm(1, soa::Vec3<double>(0.1, 0, 0),
+                                     soa::Mat3<double>::Identity() * 0.01);
+  b.hinge.type = soa::HingeType::Revolute;
+  const soa::Model m = soa::Model::from_base_first({b});
+  soa::ChainSystem sys(m, {});
+  State x = State::rest(m);
+  const double E0 = sys.energy(x);
+  x.beta[0] = 1;
+  return std::sqrt(1e6 / (2 * (sys.energy(x) - E0)));
+}
+
+// Issue 16: the stiffness monitor (on by default) stops the explicit methods at the first
+// step, before the blow-up, with h lambda; at h omega ~ 0.6 it lets RK4 run.
+TEST(simulation_Stiffness, TheMonitorStopsExplicitMethodsBeyondTheirBound) {
+  for (Integrator I : {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4}) {
+    const std::string msg = blow_up_message(I, 1e-3, soa::StiffnessPolicy::Stop);
+    const std::size_t at = msg.find("beyond the stability bound at t = 0 s, step 0");
+    ASSERT_NE(at, std::string::npos) << soa::integrator_name(I) << ": " << msg;
+    const std::size_t hl = msg.find("|h lambda| = ");
+    ASSERT_NE(hl, std::string::npos) << msg;
+    double h_lambda = 0;
+    ASSERT_EQ(std::sscanf(msg.c_str() + hl, "|h lambda| = %lf", &h_lambda), 1) << msg;
+    EXPECT_NEAR(h_lambda, 1e-3 * stiff_omega(), 2e-3 * h_lambda) << msg;  // printed to 3 digits
+  }
+  EXPECT_EQ(blow_up_message(Integrator::RK4, 1e-4, soa::StiffnessPolicy::Stop), "(no error)");
+}
+
+// The spring of stiffness k on a link of inertia I about its hinge, damper c: one mode,
+// lambda = (-c +- sqrt(c^2 - 4 k I)) / 2I.
+Scene spring(double k, double c) {
+  soa::Body b;
+  b.name = "spring";
+  b.M = soa::SpatialInertia::from_cm(1, soa::Vec3<double>(0.1, 0, 0),
+                                     soa::Mat3<double>::Identity() * 0.01);
+  b.hinge.type = soa::HingeType::Revolute;
+  b.hinge.axis = soa::Vec3<double>::UnitZ();
+  b.stiffness = k;
+  b.damping = c;
+  Scene s{soa::Model::from_base_first({b}), {}};
+  s.m.gravity.setZero();
+  s.x0 = State::rest(s.m);
+  return s;
+}
+
+// The dominant eigenvalue by power iteration against the eigenvalues of the Jacobian formed
+// column by column (central differences, Eigen's eigensolver), on random chains with
+// springs and dampers of stiffness ratios up to 1e6 (every hinge type), at random states: its
+// modulus is the largest and it is an eigenvalue, within 1 % of the largest modulus (the
+// chains have up to 72 states; 24 Arnoldi steps, as the monitor's first check).
+TEST(simulation_Stiffness, DominantEigenvalueAgreesWithTheJacobiansSpectrum) {
+  soa::test::Random<double> rnd(1601);
+  double worst_abs = 0, worst_re = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    soa::test::ChainOptions co;
+    co.gravity = true;
+    co.springs = true;
+    co.all_hinge_types = true;
+    soa::Model m = soa::test::random_chain(rnd, 2 + trial % 5, co);
+    for (int k = 1; k <= m.n(); ++k) {  // stiffness 1 ... 1e6 spread over the chain
+      auto& B = const_cast<soa::Body&>(m.body(k));
+      B.stiffness = std::pow(10.0, 6.0 * double(k - 1) / std::max(1, m.n() - 1));
+      B.damping = 0.05 * std::sqrt(B.stiffness);
+    }
+    const State x = soa::test::random_state(rnd, m);
+    soa::ChainSystem sys(m, {});
+    soa::Stepper st(sys);
+    const int n2 = 2 * m.nv();
+    Eigen::MatrixXd J(n2, n2);
+    Eigen::VectorXd Fp(n2), Fm(n2), z = Eigen::VectorXd::Zero(n2);
+    for (int i = 0; i < n2; ++i) {
+      const double d = 1e-6;
+      z[i] = d;
+      st.rate_at(0, x, z, Fp);
+      z[i] = -d;
+      st.rate_at(0, x, z, Fm);
+      z[i] = 0;
+      J.col(i) = (Fp - Fm) / (2 * d);
+    }
+    const Eigen::VectorXcd ev = Eigen::EigenSolver<Eigen::MatrixXd>(J, false).eigenvalues();
+    int top = 0;
+    for (int i = 1; i < ev.size(); ++i)
+      if (std::abs(ev[i]) > std::abs(ev[top])) top = i;
+    soa::DominantEigenvalueT<double> dominant(m.nv());
+    const std::complex<double> l = dominant(st, 0.0, x, 24);
+    // Its modulus is the largest, and it is an eigenvalue (where two moduli tie, either).
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < ev.size(); ++i) nearest = std::min(nearest, std::abs(l - ev[i]));
+    worst_abs = std::max(worst_abs, std::abs(std::abs(l) - std::abs(ev[top])) / std::abs(ev[top]));
+    worst_re = std::max(worst_re, nearest / std::abs(ev[top]));
+  }
+  std::printf(
+      "[ stiff    ] dominant eigenvalue: worst relative error of |lambda| %.2e, distance to "
+      "the nearest eigenvalue %.2e\n",
+      worst_abs, worst_re);
+  EXPECT_LE(worst_abs, 1e-2);
+  EXPECT_LE(worst_re, 1e-2);
+}
+
+// A fast mode that the start does not excite (a stiff spring at rest) leaves an explicit
+// run beyond its bound with nothing to show for it: the monitor stops it all the same
+// (Stop), or notes it and lets it finish (Warn); Off spends no evaluation on it. Its cost: a
+// check every 25 RK4 steps and at the end, 1 + min(k, 2 n_v) evaluations for k Arnoldi steps
+// (24 at the start, 4 after): 3 on this one-hinge chain.
+TEST(simulation_Stiffness, NothingFinishesBeyondTheBoundUnnoticed) {
+  const Scene s = spring(1e6, 10);  // omega = 1e6 / 0.02 ^ 1/2 ~ 7071 rad/s
+  const double omega = std::sqrt(1e6 / 0.02), h = 1.5 * 2.83 / omega;
+  const long n = 200;
+  auto go = [&](soa::StiffnessPolicy policy, double dt) {
+    soa::ChainSystem sys(s.m, {});
+    soa::SimulationOptions opt;
+    opt.method = Integrator::RK4;
+    opt.dt = dt;
+    opt.t_end = dt * double(n);
+    opt.stiffness = policy;
+    State x = s.x0;
+    return soa::simulate(sys, x, opt, [](double, const State&) {});
+  };
+  EXPECT_EQ(go(soa::StiffnessPolicy::Off, h).evaluations, 4 * n);  // finishes, at rest
+  EXPECT_THROW(go(soa::StiffnessPolicy::Stop, h), soa::Error);
+  const soa::SimulationSummary warned = go(soa::StiffnessPolicy::Warn, h);
+  EXPECT_NE(warned.stiffness_warning.find("beyond the stability bound at t = 0 s"),
+            std::string::npos)
+      << warned.stiffness_warning;
+  EXPECT_NEAR(warned.max_h_lambda, h * omega, 1e-3 * h * omega);
+  const soa::SimulationSummary inside = go(soa::StiffnessPolicy::Stop, 0.5 * h);
+  EXPECT_TRUE(inside.stiffness_warning.empty());
+  const long checks = 1 + (n - 1) / 25 + 1;  // steps 0, 25, ..., 175, and the end (200)
+  EXPECT_EQ(inside.stiffness_checks, checks);
+  EXPECT_EQ(inside.evaluations, 4 * n + 3 * checks);
+  std::printf("[ stiff    ] monitor: %ld checks, %ld evaluations beside RK4's %ld (%.1f %%)\n",
+              inside.stiffness_checks, inside.evaluations - 4 * n, 4 * n,
+              100.0 * double(inside.evaluations - 4 * n) / double(4 * n));
+}
+
+// The bound the monitor applies is the method's: RK4 runs at 0.95 of 2.83 / omega on an
+// undamped spring and is stopped at 1.05; symplectic Euler at 0.95 and 1.05 of 2 / omega.
+TEST(simulation_Stiffness, TheBoundIsTheMethods) {
+  const Scene s = spring(1e6, 0);
+  const double omega = std::sqrt(1e6 / 0.02);
+  for (const auto& [I, bound] : {std::pair{Integrator::RK4, 2.0 * std::sqrt(2.0)},
+                                 std::pair{Integrator::SymplecticEuler, 2.0}}) {
+    for (const double f : {0.95, 1.05}) {
+      soa::ChainSystem sys(s.m, {});
+      soa::SimulationOptions opt;
+      opt.method = I;
+      opt.dt = f * bound / omega;
+      opt.t_end = 10 * opt.dt;
+      State x = s.x0;
+      x.theta[0] = 1e-3;
+      bool stopped = false;
+      try {
+        soa::simulate(sys, x, opt, [](double, const State&) {});
+      } catch (const soa::Error&) {
+        stopped = true;
+      }
+      EXPECT_EQ(stopped, f > 1) << soa::integrator_name(I) << " at " << f << " x its bound";
+    }
+  }
 }
 
 // Issue 11: a step count that does not fit is refused with the numbers (it overflowed a

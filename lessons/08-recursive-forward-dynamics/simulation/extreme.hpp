@@ -121,8 +121,50 @@ inline std::vector<ExtremeCase> extreme_cases(bool quick) {
 }
 
 /// Implicit midpoint forms its Jacobian by 2 nv forward dynamics per step and factors it
-/// (\f$O(n^3)\f$): run up to this many links only.
+/// (\f$O(n^3)\f$): run up to this many links only. esdirk4 keeps its Jacobian across steps
+/// and runs on every case.
 constexpr int kImplicitMaxN = 100;
+
+/// The integrators of the extreme cases: the report's five and esdirk4.
+inline std::vector<Integrator> extreme_methods() {
+  std::vector<Integrator> m(kMethods.begin(), kMethods.end());
+  m.push_back(Integrator::Esdirk);
+  return m;
+}
+
+/// How a run ended, for the summary's counts.
+enum class Outcome { NotRun, Finished, Singular, BeyondBound, BlowUp, Newton, Other };
+
+inline const char* outcome_name(Outcome o) {
+  switch (o) {
+    case Outcome::NotRun:
+      return "not run (cost)";
+    case Outcome::Finished:
+      return "finished";
+    case Outcome::Singular:
+      return "stopped: singular D (physically singular chain)";
+    case Outcome::BeyondBound:
+      return "stopped: beyond the stability bound (stiffness monitor)";
+    case Outcome::BlowUp:
+      return "stopped: blow-up";
+    case Outcome::Newton:
+      return "stopped: Newton failure";
+    case Outcome::Other:
+      return "stopped: other";
+  }
+  return "?";
+}
+
+/// The outcome of a run from its diagnostic.
+inline Outcome outcome(bool ran, bool ok, const std::string& d) {
+  if (!ran) return Outcome::NotRun;
+  if (ok) return Outcome::Finished;
+  if (d.find("singular") != std::string::npos) return Outcome::Singular;
+  if (d.find("beyond the stability bound") != std::string::npos) return Outcome::BeyondBound;
+  if (d.find("Newton") != std::string::npos) return Outcome::Newton;
+  if (d.find("blow-up at t = ") != std::string::npos) return Outcome::BlowUp;
+  return Outcome::Other;
+}
 
 /// \p s with every '|' (which would end a markdown table cell) written as '‖'.
 inline std::string no_bars(const std::string& s) {
@@ -132,9 +174,10 @@ inline std::string no_bars(const std::string& s) {
 }
 
 /// A diagnostic in a few words, for the tables: "refused: singular D(1) of body b1",
-/// "blow-up at t = 0.01 s (h lambda 118)", "Newton failed at t = 0.026 s (h lambda 18.8)",
-/// with \f$h\lambda\f$ the estimated stiffness times the step at the last state; any other
-/// message whole. Norms as ‖x‖ ('|' would end a table cell).
+/// "beyond its stability bound at t = 0.004 s (h lambda 3.1)" (the stiffness monitor),
+/// "blow-up at t = 0.01 s (h lambda 118)", "Newton failed at t = 0.026 s (‖dZ‖ 0.3, h lambda
+/// 18.8)", with \f$h\lambda\f$ the estimated stiffness times the step at the last state;
+/// any other message whole. Norms as ‖x‖ ('|' would end a table cell).
 inline std::string short_diagnostic(const std::string& d) {
   auto after = [&](const std::string& key, const std::string& stop) {
     const std::size_t i = d.find(key);
@@ -146,9 +189,16 @@ inline std::string short_diagnostic(const std::string& d) {
   if (d.find("singular") != std::string::npos) {
     s = "refused: singular D(" + after("articulated inertia D(", ")") + ") of body " +
         after("body '", "'");
+  } else if (d.find("beyond the stability bound at t = ") != std::string::npos) {
+    s = "beyond its stability bound at t = " + after("stability bound at t = ", " s") +
+        " s (h lambda " + after("|h lambda| = ", " ") + ")";
   } else if (d.find("blow-up at t = ") != std::string::npos) {
-    s = d.find("Newton") != std::string::npos ? "Newton failed" : "blow-up";
+    const bool newton = d.find("Newton") != std::string::npos;
+    s = newton ? "Newton failed" : "blow-up";
     s += " at t = " + after("blow-up at t = ", " s") + " s";
+    if (newton && d.find("|dZ| = ") != std::string::npos) {
+      s += " (‖dZ‖ " + after("|dZ| = ", ",") + ")";
+    }
     const std::size_t last = d.find(" at the last state");
     if (last != std::string::npos) {
       const std::size_t open = d.rfind('(', last);
@@ -225,7 +275,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
     res.ref = reference(p, 1e-13, c.ref_steps);
     if (res.ref.diagnostic.empty()) res.lambda = largest_stiffness(p, tol);
     const bool massless_tip = c.spec.tip_mass >= 0;
-    for (const Integrator method : kMethods) {
+    for (const Integrator method : extreme_methods()) {
       ExtremeRun e;
       e.method = method;
       if (method == Integrator::ImplicitMidpoint && p.m.n() > kImplicitMaxN) {
@@ -235,7 +285,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       e.ran = true;
       soa::SimulationOptions opt;
       opt.method = method;
-      opt.dt = method == Integrator::DormandPrince ? 0 : c.dt;
+      opt.dt = soa::is_adaptive(method) ? 0 : c.dt;
       opt.tol = tol;
       e.r = run(p, opt, 2e-3);  // runs under 2 ms repeated, the median time kept
       if (e.r.ok) {
@@ -254,7 +304,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       // The accurate methods on the runs that finish: RK4's global error on
       // \f$\dot y = \lambda y\f$ is \f$t\,\lambda(h\lambda)^4/120\f$ per unit state
       // (checked where \f$h\lambda \le 0.5\f$, the asymptotic regime); dopri5 keeps each
-      // step's local error below tol, so after N steps the error is about N tol. RK4 is
+      // step's local error below tol, so after N steps the error is about N tol (esdirk4
+      // likewise, its error estimate of order 3 filtered for stiff modes). RK4 is
       // allowed a factor 100 (the nonlinear chain is not \f$\dot y = \lambda y\f$: the
       // whipping chain at 100 rad/s reaches 8 times the linear estimate; one order less would
       // be 1/(h lambda) = 60 times more), dopri5 a factor 10. Neither can beat the rounding
@@ -263,8 +314,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       // rounding of up to 3000 steps of a state of size 1, where a lucky reference agreement
       // of 1e-14 says nothing): the threshold is the largest.
       const double hl = c.dt * res.lambda;
-      const bool resolved =
-          method == Integrator::DormandPrince || (method == Integrator::RK4 && hl <= 0.5);
+      const bool resolved = soa::is_adaptive(method) || (method == Integrator::RK4 && hl <= 0.5);
       if (resolved && e.r.ok && res.ref.diagnostic.empty()) {
         const double truncation = method == Integrator::RK4
                                       ? 100 * t_end * res.lambda * std::pow(hl, 4) / 120
@@ -294,13 +344,20 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
 
   // Summary: runs finished of runs run, and the runs stopped by a diagnostic, per case:
   // "r1 J1e-03 tip0 n10: every method refused: singular D(1) of body b1".
-  summary.extreme_solved = summary.extreme_total = 0;
+  summary.extreme_solved = summary.extreme_total = summary.extreme_undiagnosed = 0;
   summary.diagnosed.clear();
+  summary.extreme_outcomes.clear();
   for (const ExtremeResult& res : results) {
     std::vector<std::string> stopped;
     std::string silent;  // finished beyond the stability bound: not solved, not diagnosed
     int ran = 0;
     for (const ExtremeRun& e : res.runs) {
+      const Outcome o = outcome(e.ran, e.r.ok, e.r.diagnostic);
+      ++summary.extreme_outcomes[outcome_name(o)];
+      MethodSummary& ms = summary.of(e.method);
+      ++(o == Outcome::NotRun     ? ms.extreme_not_run
+         : o == Outcome::Finished ? ms.extreme_finished
+                                  : ms.extreme_diagnosed);
       if (!e.ran) continue;
       ++ran, ++summary.extreme_total;
       if (!e.r.ok)
@@ -308,7 +365,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
                           short_diagnostic(e.r.diagnostic));
       else
         ++summary.extreme_solved;
-      if (e.r.ok && res.c.dt * res.lambda > bound(e.method))
+      if (e.r.ok && res.c.dt * res.lambda > bound(e.method) && ++summary.extreme_undiagnosed)
         silent += std::string("; ") + soa::integrator_name(e.method) +
                   " finished beyond its stability bound (h lambda " +
                   num(res.c.dt * res.lambda, "%.2g") + ") with error " + num(e.error, "%.1e") +
@@ -341,14 +398,13 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       const std::string status = !e.ran ? "not run (cost)" : e.r.ok ? "finished" : "diagnosed";
       csv << id << ',' << csv_field(res.name) << ',' << s.n << ',' << num(s.ratio, "%g") << ','
           << num(s.J, "%g") << ',' << (s.pose_seed ? "random" : "straight") << ','
-          << num(s.rate, "%g") << ','
-          << (e.method == Integrator::DormandPrince ? "" : num(res.c.dt, "%g")) << ','
-          << soa::integrator_name(e.method) << ',' << status << ','
+          << num(s.rate, "%g") << ',' << (soa::is_adaptive(e.method) ? "" : num(res.c.dt, "%g"))
+          << ',' << soa::integrator_name(e.method) << ',' << status << ','
           << (e.r.ok ? std::to_string(e.r.summary.steps) : "") << ','
           << (e.r.ok ? std::to_string(e.r.summary.evaluations) : "") << ',' << num(e.drift) << ','
           << num(e.error) << ',' << num(e.threshold) << ',' << num(res.ref.agreement) << ','
           << num(e.r.seconds) << ','
-          << (e.method == Integrator::DormandPrince ? "" : num(res.c.dt * res.lambda)) << ','
+          << (soa::is_adaptive(e.method) ? "" : num(res.c.dt * res.lambda)) << ','
           << csv_field(e.r.ok ? "" : e.r.diagnostic) << '\n';
     }
   }
@@ -359,19 +415,23 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
   md << "Extreme chains of lesson 6 simulated over " << num(t_end, "%g")
      << " s from rest (straight) or with random rates (bent), no hinge forces, gravity in "
         "the plane of motion. Fixed steps 1 ms (10 µs at 100 rad/s, 0.1 ms on the 1000-link "
-        "chain), dopri5 at tolerance "
+        "chain), dopri5 and esdirk4 at tolerance "
      << num(tol, "%.0e")
-     << ". Each cell: state error against the reference / relative energy drift (largest "
+     << ". The explicit fixed-step methods run with soa::simulate's stiffness monitor "
+        "(h lambda by power iteration at the start, every 100 steps, 25 for rk4, and at the "
+        "end): beyond the method's stability bound it stops the run. Each cell: state error "
+        "against the reference / relative energy drift (largest "
         "abs(E - E0) over the energy scale), then steps and wall time; or the diagnostic that "
         "stopped the run (h lambda: estimated stiffness times step where it stopped). "
         "Reference: dopri5 at 1e-13; its agreement with RK4 at 2000 or 20000 steps beside "
         "it (1000 steps on the 1000-link chain). h lambda: the fixed step times the largest "
-        "estimated stiffness along the motion; a run that finished beyond its method's stability "
-        "bound (symplectic Euler 2, RK4 2.83) is marked so: its error is not the method's "
-        "accuracy.\n\n| case | h lambda | reference agreement |";
-  for (const Integrator m : kMethods) md << ' ' << soa::integrator_name(m) << " |";
+        "estimated stiffness along the motion (dopri5's path, every eighth of the horizon); a "
+        "run that finished beyond its method's stability bound by that estimate (symplectic "
+        "Euler 2, RK4 2.83) would be marked \"beyond stability\" and counted undiagnosed.\n\n"
+        "| case | h lambda | reference agreement |";
+  for (const Integrator m : extreme_methods()) md << ' ' << soa::integrator_name(m) << " |";
   md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < kMethods.size(); ++i) md << "---|";
+  for (std::size_t i = 0; i < extreme_methods().size(); ++i) md << "---|";
   md << '\n';
   for (const ExtremeResult& res : results) {
     md << "| " << res.name << " | "
@@ -407,6 +467,28 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
   md.close();
 
   std::printf("  %d of %d runs finished\n", summary.extreme_solved, summary.extreme_total);
+  for (const auto& [what, count] : summary.extreme_outcomes)
+    std::printf("    %-60s %d\n", what.c_str(), count);
+  checks.check("no run finished beyond its stability bound undiagnosed (" +
+                   std::to_string(summary.extreme_undiagnosed) + ")",
+               summary.extreme_undiagnosed == 0);
+  checks.check(
+      "every stopped run names its cause (singular D, stability bound, blow-up with h "
+      "lambda, Newton failure)",
+      summary.extreme_outcomes.count(outcome_name(Outcome::Other)) == 0);
+  {
+    // esdirk4 finishes every case that is not physically singular.
+    int esdirk_unfinished = 0;
+    for (const ExtremeResult& res : results)
+      for (const ExtremeRun& e : res.runs)
+        if (e.method == Integrator::Esdirk &&
+            outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Finished &&
+            outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Singular)
+          ++esdirk_unfinished;
+    checks.check("esdirk4 finishes every case that is not physically singular (" +
+                     std::to_string(esdirk_unfinished) + " not)",
+                 esdirk_unfinished == 0);
+  }
   checks.check("massless tip: every method stops with 'singular D' naming the tip b1 (" +
                    std::to_string(refused_named) + " of " + std::to_string(refused) + ")",
                refused > 0 && refused_named == refused);
@@ -417,7 +499,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
   checks.check("reference: dopri5 1e-13 and RK4 agree on every case not refused (worst)",
                worst_agreement, 1e-8);
   checks.check(
-      "rk4 (h lambda <= 0.5) and dopri5 within their error bounds (worst error / "
+      "rk4 (h lambda <= 0.5), dopri5 and esdirk4 within their error bounds (worst error / "
       "threshold, " +
           std::to_string(accurate_checked) + " runs)",
       worst_ratio, 1.0);

@@ -385,13 +385,14 @@ void summary_section(Checklist& checks, const fs::path& out, const Summary& s) {
   std::ofstream md(out / "l8_sim_summary.md");
   md << "| Method | order | order found (double pendulum, arm, chain, stiff chain) | error within "
      << num(s.cost_seconds * 1e3, "%g") << " ms (" << s.cost_scene
-     << ") | largest stable step, stiff chain: found / theory |\n|---|---|---|---|---|\n";
+     << ") | largest stable step, stiff chain: found / theory | extreme runs: finished / "
+        "diagnosed |\n|---|---|---|---|---|---|\n";
   for (const MethodSummary& m : s.methods) {
-    md << "| " << soa::integrator_name(m.method) << " | "
-       << (m.method == Integrator::DormandPrince ? 5 : soa::integrator_order(m.method)) << " | ";
+    md << "| " << m.name << " | " << (m.order > 0 ? std::to_string(m.order) : "variable") << " | ";
     for (std::size_t i = 0; i < m.orders.size(); ++i)
       md << (i ? ", " : "")
          << (std::isnan(m.orders[i].second) ? "-" : num(m.orders[i].second, "%.2f"));
+    if (m.orders.empty()) md << "-";
     md << " | " << (std::isnan(m.error_at_cost) ? "-" : num(m.error_at_cost, "%.1e")) << " | ";
     if (!m.stiff_note.empty())
       md << m.stiff_note;
@@ -399,11 +400,21 @@ void summary_section(Checklist& checks, const fs::path& out, const Summary& s) {
       md << num(m.h_stable, "%.3g") << " s / " << num(m.h_theory, "%.3g") << " s";
     else
       md << "-";
+    md << " | ";
+    if (m.extreme_finished + m.extreme_diagnosed + m.extreme_not_run == 0)
+      md << "-";
+    else
+      md << m.extreme_finished << " / " << m.extreme_diagnosed
+         << (m.extreme_not_run ? " (" + std::to_string(m.extreme_not_run) + " not run)" : "");
     md << " |\n";
   }
   if (!s.stiff_chain.empty()) md << "\nStable steps on the " << s.stiff_chain << ".\n";
   md << "\nExtreme cases of lessons 5-8 simulated: " << s.extreme_solved << " of "
-     << s.extreme_total << " runs finished; diagnosed rather than solved:\n\n";
+     << s.extreme_total << " runs finished, " << s.extreme_total - s.extreme_solved
+     << " stopped by a diagnostic that names the cause, " << s.extreme_undiagnosed
+     << " finished beyond a stability bound undiagnosed:\n\n";
+  for (const auto& [what, count] : s.extreme_outcomes) md << "- " << what << ": " << count << "\n";
+  md << "\nDiagnosed rather than solved:\n\n";
   if (s.diagnosed.empty()) md << "- none\n";
   for (const std::string& d : s.diagnosed) md << "- " << d << "\n";
   checks.check("l8_sim_summary.md written", bool(md));

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -140,27 +141,42 @@ inline double fitted_slope(const std::vector<double>& x, const std::vector<doubl
 /// the stiff chain; the cases diagnosed rather than solved.
 struct MethodSummary {
   Integrator method = Integrator::RK4;
+  std::string name;  ///< integrator_name(), or a method of another library ("cvode")
+  int order = 0;     ///< its order (0: variable, as CVODE's BDF)
   std::vector<std::pair<std::string, double>> orders;  ///< scene, fitted order
   double error_at_cost = kNaN;  ///< error reached within Summary::cost_seconds (arm7)
   double h_stable = kNaN;       ///< largest stable step found on the stiffest chain
   double h_theory = kNaN;       ///< its theoretical bound (linear stability)
   std::string stiff_note;       ///< e.g. the implicit method's error far beyond the bound
+  int extreme_finished = 0, extreme_diagnosed = 0, extreme_not_run = 0;  ///< section 4
 };
 
 struct Summary {
   double cost_seconds = 1e-2;
   std::string cost_scene = "arm7";
-  std::array<MethodSummary, kMethods.size()> methods;
+  std::vector<MethodSummary> methods;  ///< kMethods first, then the others as they report
   std::string stiff_chain;             ///< which chain the stable steps are for
   std::vector<std::string> diagnosed;  ///< "case: diagnostic" of the extreme cases
   int extreme_solved = 0, extreme_total = 0;
+  int extreme_undiagnosed = 0;                  ///< finished beyond the stability bound
+  std::map<std::string, int> extreme_outcomes;  ///< runs per outcome (extreme.hpp)
   Summary() {
-    for (std::size_t i = 0; i < kMethods.size(); ++i) methods[i].method = kMethods[i];
+    for (Integrator i : kMethods) of(i);
   }
+  /// The summary of integrator \p i (added when new).
   MethodSummary& of(Integrator i) {
+    MethodSummary& s = of(soa::integrator_name(i));
+    s.method = i;
+    s.order = i == Integrator::DormandPrince ? 5 : soa::integrator_order(i);
+    return s;
+  }
+  /// The summary of the method called \p name (added when new).
+  MethodSummary& of(const std::string& name) {
     for (MethodSummary& s : methods)
-      if (s.method == i) return s;
-    return methods[0];
+      if (s.name == name) return s;
+    methods.emplace_back();
+    methods.back().name = name;
+    return methods.back();
   }
 };
 

@@ -239,11 +239,14 @@ class StepperT {
       dZ_ = lu_.solve(r_);
       Z -= dZ_;
       const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
-      if (!Z.allFinite()) return false;
+      failure_ = NewtonFailure{1, size, false};
+      failure_.diverged = !Z.allFinite();
+      if (failure_.diverged) return false;
       if (size <= tol) break;
       if (it > 0) {
         const S rate = size / last;
-        if (rate >= S(1)) return false;  // diverging
+        failure_.diverged = rate >= S(1);
+        if (failure_.diverged) return false;
         if (rate / (S(1) - rate) * size <= tol) break;
       }
       last = size;
@@ -274,10 +277,12 @@ class StepperT {
   /// coordinates, \f$\mathrm{tol}(1 + |\beta_i|)\f$ for velocities (as dopri5's control).
   void set_tolerance(S tol) { tol_ = tol; }
 
-  /// What the last esdirk() call did when it returned false.
+  /// What the last esdirk() or implicit_midpoint() call did when it returned false.
   struct NewtonFailure {
-    int stage = 0;          ///< the stage whose Newton iteration failed (2 ... 6)
-    S residual = S(0);      ///< the last Newton correction, in the tolerance's scaled norm
+    int stage = 0;  ///< the stage whose Newton iteration failed (esdirk 2 ... 6, midpoint 1)
+    /// The last Newton correction: esdirk in the tolerance's scaled norm, implicit midpoint
+    /// \f$|\Delta Z|_2\f$ of \f$Z = (u, w)\f$
+    S residual = S(0);
     bool diverged = false;  ///< the corrections grew (else: too slow)
   };
   const NewtonFailure& newton_failure() const { return failure_; }

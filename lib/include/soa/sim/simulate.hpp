@@ -5,10 +5,10 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <random>
 #include <string>
 
 #include "soa/sim/integrators.hpp"
+#include "soa/sim/stiffness.hpp"
 
 namespace soa {
 
@@ -25,6 +25,15 @@ struct SimulationOptionsT {
   /// When set, the run stops at the first step boundary after `*stop` becomes non-zero (a
   /// signal handler sets it): SimulationSummary::interrupted, the state is the last step's.
   const volatile std::sig_atomic_t* stop = nullptr;
+  /// The stiffness monitor of the explicit fixed-step methods (euler, symplectic-euler,
+  /// rk4): \f$h\lambda\f$ by DominantEigenvalueT at the start (24 Arnoldi steps, 25
+  /// evaluations), every `stiffness_every` steps after (4 steps from the last Ritz vector, 5
+  /// evaluations) and at the end; beyond the method's bound (beyond_stability_bound()) the
+  /// run stops, or notes it (Warn).
+  StiffnessPolicy stiffness = StiffnessPolicy::Stop;
+  /// Steps between two checks; 0: as many as make a check (5 evaluations) cost 5 % of the
+  /// steps' evaluations: every 100 steps of euler and symplectic-euler, 25 of rk4.
+  long stiffness_every = 0;
 };
 
 /// The most fixed steps a run takes: step counts are exact in a double up to \f$2^{53}\f$.
@@ -44,62 +53,11 @@ struct SimulationSummary {
   double max_energy_drift = 0;  ///< max |E(t) - E(0)| over the steps
   double t = 0;                 ///< the time reached (t_end unless interrupted)
   bool interrupted = false;     ///< stopped by SimulationOptionsT::stop before t_end
+  long stiffness_checks = 0;    ///< checks of the stiffness monitor
+  double max_h_lambda = 0;      ///< the largest \f$h|\lambda|\f$ it found
+  /// StiffnessPolicy::Warn: what the first check beyond the bound found, else empty.
+  std::string stiffness_warning;
 };
-
-/// An estimate of the largest \f$|\lambda|\f$ of the Jacobian of the rate at \p x (power
-/// iteration on finite-difference Jacobian-vector products): with the step h,
-/// \f$h|\lambda|\f$ tells whether an explicit method can be stable (RK4: below about 2.8,
-/// Euler: 2 on the real axis, 0 on the imaginary one).
-template <class S>
-S stiffness_estimate(StepperT<S>& stepper, int nv, S t, const StateT<S>& x) {
-  const int n2 = 2 * nv;
-  VecX<S> F0(n2), F1(n2), d(n2);
-  std::mt19937 g(5);
-  std::normal_distribution<double> N;
-  for (int i = 0; i < n2; ++i) d[i] = S(N(g));
-  d.normalize();
-  stepper.rate_at(t, x, VecX<S>::Zero(n2), F0);
-  // Growth of |J^k d| per iteration, as a geometric mean over the last 20 of 30 (the
-  // dominant eigenvalues of a mechanical system come in pairs +-i omega, so single ratios
-  // alternate).
-  double log_sum = 0;
-  int counted = 0;
-  for (int it = 0; it < 30; ++it) {
-    const S delta = std::sqrt(eps<S>());
-    stepper.rate_at(t, x, (delta * d).eval(), F1);
-    const VecX<S> Jd = (F1 - F0) / delta;
-    const S norm = Jd.norm();
-    if (!(norm > S(0)) || !std::isfinite(double(norm))) break;
-    if (it >= 10) log_sum += std::log(double(norm)), ++counted;
-    d = Jd / norm;
-  }
-  const S lambda = counted > 0 ? S(std::exp(log_sum / counted)) : S(0);
-  return lambda;
-}
-
-/// Where each method is stable on an undamped oscillation \f$\ddot x = -\omega^2 x\f$, for the
-/// blow-up message.
-inline const char* stability_note(Integrator i) {
-  switch (i) {
-    case Integrator::Euler:
-      return "explicit Euler grows on undamped oscillations at every step, |1 + i h omega| > 1: "
-             "use symplectic-euler, rk4 or implicit-midpoint";
-    case Integrator::SymplecticEuler:
-      return "symplectic Euler needs h omega < 2: take a smaller --dt or implicit-midpoint";
-    case Integrator::RK4:
-      return "RK4 needs h omega < 2.83: take a smaller --dt or implicit-midpoint";
-    case Integrator::DormandPrince:
-      return "dopri5 shrinks its steps to its stability limit (h lambda about 3.3 on decaying "
-             "modes, 2.5 on lightly damped oscillations): a stiff scene is cheaper with "
-             "implicit-midpoint";
-    case Integrator::ImplicitMidpoint:
-      return "implicit midpoint is stable at any step; Newton's method needs a smaller --dt";
-    case Integrator::Esdirk:
-      return "esdirk4 is L-stable at any step and shrinks it when Newton fails: a blow-up here "
-             "is in the motion itself, or the tolerance is too loose (--tol)";
-  }
-  return "";
-}
 
 /// Integrates \p sys from the state \p x (overwritten by the final state) over
 /// [0, opt.t_end]. \p observe(t, x) is called at t = 0 and after every accepted step. A run
@@ -158,7 +116,37 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
                   stability_note(opt.method));
     throw Error(buf);
   };
+  // The stiffness monitor (explicit fixed-step methods).
+  const bool monitored =
+      opt.stiffness != StiffnessPolicy::Off &&
+      (opt.method == Integrator::Euler || opt.method == Integrator::SymplecticEuler ||
+       opt.method == Integrator::RK4);
+  const long every = opt.stiffness_every > 0         ? opt.stiffness_every
+                     : opt.method == Integrator::RK4 ? 25
+                                                     : 100;
+  DominantEigenvalueT<S> dominant(monitored ? nv : 0);
+  long checked_at = -1;
+  auto check_stiffness = [&](int iterations) {
+    const std::complex<double> z = double(h) * dominant(stepper, t, x, iterations);
+    checked_at = sum.steps;
+    ++sum.stiffness_checks;
+    sum.max_h_lambda = std::max(sum.max_h_lambda, std::abs(z));
+    if (!beyond_stability_bound(opt.method, z)) return;
+    const double R = std::abs(explicit_stability_function(opt.method, z));
+    char amp[64] = "";
+    if (!std::isnan(R)) std::snprintf(amp, sizeof amp, ", |R(h lambda)| = %.3g > 1", R);
+    char buf[480];
+    std::snprintf(buf, sizeof buf,
+                  "beyond the stability bound at t = %.6g s, step %ld (h = %.3g): h lambda = "
+                  "%.3g%+.3gi, |h lambda| = %.3g (lambda: Arnoldi on the Jacobian)%s",
+                  double(t), sum.steps, double(h), z.real(), z.imag(), std::abs(z), amp);
+    const std::string what = std::string("simulate (") + integrator_name(opt.method) + "): " + buf +
+                             " (" + stability_note(opt.method) + ")";
+    if (opt.stiffness == StiffnessPolicy::Stop) throw Error(what);
+    if (sum.stiffness_warning.empty()) sum.stiffness_warning = what;
+  };
   while (adaptive ? t < opt.t_end : sum.steps < n_fixed) {
+    if (monitored && sum.steps % every == 0) check_stiffness(sum.steps == 0 ? 24 : 4);
     if (opt.stop && *opt.stop) {
       sum.interrupted = true;
       break;
@@ -207,7 +195,14 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       }
       continue;
     }
-    if (!ok) blow_up("Newton's method did not converge", h);
+    if (!ok) {
+      const auto& f = stepper.newton_failure();
+      char what[160];
+      std::snprintf(what, sizeof what,
+                    "Newton's method did not converge (last correction |dZ| = %.3g, %s)",
+                    double(f.residual), f.diverged ? "diverging" : "too slow");
+      blow_up(what, h);
+    }
     if (adaptive) {
       // RMS norm of the local error scaled by tol (1 + |y|), y = (u, beta).
       S e2 = S(0);
@@ -253,6 +248,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     sum.max_energy_drift = std::max(sum.max_energy_drift, double(std::abs(E - E0)));
     observe(t, x);
   }
+  if (monitored && checked_at != sum.steps && !sum.interrupted) check_stiffness(4);
   sum.t = double(t);
   sum.jacobians = stepper.jacobians();
   sum.evaluations = sys.evaluations() - evals0;
