@@ -5,15 +5,20 @@
 //    50-link chain) and a stiff-spring chain, every integrator over a sweep of steps (or
 //    tolerances, dopri5), final-state error against a reference solution, the order of
 //    convergence fitted: l8_sim_work_precision.csv, l8_sim_orders.md, and one figure per
-//    scene l8_sim_wp_SCENE.png.
+//    scene l8_sim_wp_SCENE.png; esdirk4 and SUNDIALS CVODE (cvode.hpp) over the same
+//    tolerances as dopri5, their cost at equal error: l8_sim_cvode.md.
 // 2. Long-horizon energy of conservative scenes: symplectic Euler, implicit midpoint and
 //    RK4 at one step size: l8_sim_energy.csv, l8_sim_energy.png; the double pendulum by RK4
 //    and implicit midpoint side by side in the 3D viewer l8_sim_rk4_vs_midpoint_view/.
 // 3. The stiff-spring chains, k = 1 ... 1e8 (stiff.hpp): l8_sim_stiff.csv/.md/.png.
+// 3c. The same chains from their own start by esdirk4 and CVODE (stiff_implicit.hpp):
+//    l8_sim_stiff_implicit.csv/.md; the stiffest one's work-precision diagram with every
+//    method, l8_sim_wp_stiff_own.csv/.png.
 // 4. The extreme cases of lessons 5-8 simulated (extreme.hpp): l8_sim_extreme.csv/.md.
 // 5. The one-page summary the notes include: l8_sim_summary.md.
 // --quick: short horizons and sweeps, so that every code path runs in seconds.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,12 +29,15 @@
 #include <vector>
 
 #include "checklist.hpp"
+#include "cvode.hpp"
 #include "extreme.hpp"
 #include "plot.hpp"
 #include "report.hpp"
 #include "scenes.hpp"
 #include "stiff.hpp"
+#include "stiff_implicit.hpp"
 #include "support.hpp"
+#include "sweeps.hpp"
 #include "viewer.hpp"
 
 namespace {
@@ -43,43 +51,6 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------------------
 // 1. Error against run time.
 
-/// One point of a work-precision diagram.
-struct Point {
-  std::string scene;
-  Integrator method;
-  double h = kNaN, tol = kNaN;  ///< the step (fixed-step methods) or the tolerance (dopri5)
-  Run r;
-  double error = kNaN;
-};
-
-/// The sweep of one method on one problem: fixed steps \f$h = T / (n_0 2^j)\f$, or
-/// tolerances \f$10^{-2} \ldots 10^{-12}\f$ for dopri5, until the error reaches \p floor or a
-/// run takes longer than \p budget seconds.
-std::vector<Point> sweep(const SimProblem& p, const soa::State& ref, Integrator method,
-                         double floor, double budget, double min_seconds) {
-  std::vector<Point> points;
-  soa::SimulationOptions opt;
-  opt.method = method;
-  for (int j = 0; j < 40; ++j) {
-    Point pt;
-    pt.scene = p.name;
-    pt.method = method;
-    if (method == Integrator::DormandPrince) {
-      pt.tol = std::pow(10.0, -2 - j);
-      if (pt.tol < 1e-13) break;
-      opt.tol = pt.tol;
-    } else {
-      pt.h = p.t_end / (8.0 * std::pow(2.0, j));
-      opt.dt = pt.h;
-    }
-    pt.r = run(p, opt, min_seconds);
-    pt.error = pt.r.ok ? state_error(pt.r.x, ref) : kNaN;
-    points.push_back(pt);
-    if (pt.r.ok && (pt.error < floor || pt.r.seconds > budget)) break;
-  }
-  return points;
-}
-
 /// The observed order: the slope of \f$\log e\f$ against \f$\log h\f$ (fixed steps), or
 /// against \f$-\log(\text{evaluations})\f$ (dopri5: work grows as \f$h^{-1}\f$), fitted to
 /// the three smallest errors above \p lo (the reference's accuracy) and below 1: the
@@ -89,12 +60,11 @@ double observed_order(const std::vector<Point>& pts, double lo) {
   std::vector<double> x, y;
   for (const Point& pt : pts) {
     // dopri5 at loose tolerances takes the few steps its start and growth limit allow,
-    // whatever the tolerance: only runs of at least 16 steps are in its asymptotic range.
-    if (!pt.r.ok || !(pt.error > lo && pt.error < 1) ||
-        (pt.method == Integrator::DormandPrince && pt.r.summary.steps < 16))
+    // whatever the tolerance: only runs of at least 16 steps are in its asymptotic range
+    // (the same for every adaptive method).
+    if (!pt.r.ok || !(pt.error > lo && pt.error < 1) || (pt.adaptive && pt.r.summary.steps < 16))
       continue;
-    x.push_back(pt.method == Integrator::DormandPrince ? 1.0 / double(pt.r.summary.evaluations)
-                                                       : pt.h);
+    x.push_back(pt.adaptive ? 1.0 / double(pt.r.summary.evaluations) : pt.h);
     y.push_back(pt.error);
   }
   if (x.size() > 3) {
@@ -122,6 +92,85 @@ double error_within(const std::vector<Point>& pts, double seconds) {
   return best;
 }
 
+/// Rows of l8_sim_work_precision.csv.
+void write_points(std::ofstream& csv, const std::vector<Point>& pts) {
+  for (const Point& pt : pts) {
+    const soa::SimulationSummary& s = pt.r.summary;
+    const double drift = s.max_energy_drift / std::max(1.0, std::abs(s.energy0));
+    csv << pt.scene << "," << pt.name << "," << num(pt.h) << "," << num(pt.tol) << ","
+        << (pt.r.ok ? std::to_string(s.steps) : "") << ","
+        << (pt.r.ok ? std::to_string(s.evaluations) : "") << "," << num(pt.r.seconds) << ","
+        << num(pt.error) << "," << (pt.r.ok ? num(drift) : "") << ","
+        << csv_field(pt.r.ok ? "" : pt.r.diagnostic) << "\n";
+  }
+}
+
+/// The cost of the adaptive methods at one error level on one scene.
+struct CvodeComparison {
+  std::string scene;
+  double level = kNaN;
+  Cost dopri5, esdirk4, cvode;
+};
+
+/// l8_sim_cvode.md: the table of costs at equal error and, per scene, CVODE's time as a
+/// multiple of dopri5's and esdirk4's.
+bool write_cvode_comparison(const fs::path& out, const std::vector<CvodeComparison>& cs) {
+  std::ofstream md(out / "l8_sim_cvode.md");
+  if (!kHaveCvode) md << "**" << cvode_status() << ".**\n\n";
+  md << "| Scene | error | dopri5: time, evaluations | esdirk4: time, evaluations | CVODE: time, "
+        "evaluations | fastest | fewest evaluations |\n|---|---|---|---|---|---|---|\n";
+  const char* names[3] = {"dopri5", "esdirk4", "CVODE"};
+  int fastest[3] = {0, 0, 0}, compared = 0;
+  for (const CvodeComparison& c : cs) {
+    const Cost* v[3] = {&c.dopri5, &c.esdirk4, &c.cvode};
+    md << "| " << c.scene << " | " << num(c.level, "%.0e") << " |";
+    int best_t = -1, best_e = -1;
+    for (int i = 0; i < 3; ++i) {
+      if (std::isnan(v[i]->seconds)) {
+        md << " - |";
+        continue;
+      }
+      md << " " << soa::lesson::time_text(v[i]->seconds * 1e9) << ", "
+         << num(v[i]->evaluations, "%.0f") << " |";
+      if (best_t < 0 || v[i]->seconds < v[best_t]->seconds) best_t = i;
+      if (best_e < 0 || v[i]->evaluations < v[best_e]->evaluations) best_e = i;
+    }
+    md << " " << (best_t < 0 ? "-" : names[best_t]) << " | " << (best_e < 0 ? "-" : names[best_e])
+       << " |\n";
+    const int reached = int(!std::isnan(c.dopri5.seconds)) + int(!std::isnan(c.esdirk4.seconds)) +
+                        int(!std::isnan(c.cvode.seconds));
+    if (reached == 3) ++compared, ++fastest[best_t];
+  }
+  md << "\nCost at equal error: seconds and evaluations (forward dynamics calls, CVODE's "
+        "difference-quotient Jacobian included) interpolated in log-log between the two runs of "
+        "a sweep whose errors bracket the level; - where a sweep does not bracket it (it stops "
+        "at the reference's resolution and at a time budget per run, and a loose tolerance can "
+        "already be below 1e-4).\n\n";
+  if (compared > 0)
+    md << "Of the " << compared << " comparisons where all three reach the error, CVODE is the "
+       << "fastest in " << fastest[2] << ", dopri5 in " << fastest[0] << ", esdirk4 in "
+       << fastest[1] << ".";
+  // Per scene: CVODE's time over dopri5's and over esdirk4's at each level.
+  auto ratio = [](double a, double b) {
+    return std::isnan(a / b) ? std::string("-") : num(a / b, "%.2g");
+  };
+  std::string scene;
+  for (const CvodeComparison& c : cs) {
+    if (c.scene != scene) {
+      md << (scene.empty() ? "\n\nCVODE's time over dopri5's / over esdirk4's at equal error:\n"
+                           : ".\n")
+         << "\n- " << c.scene << ": ";
+      scene = c.scene;
+    } else {
+      md << "; ";
+    }
+    md << num(c.level, "%.0e") << ": " << ratio(c.cvode.seconds, c.dopri5.seconds) << " / "
+       << ratio(c.cvode.seconds, c.esdirk4.seconds);
+  }
+  if (!scene.empty()) md << ".\n";
+  return bool(md);
+}
+
 void work_precision_section(Checklist& checks, const fs::path& out, bool quick, Summary& summary) {
   checks.section("1. Error against run time (work-precision)");
   /// The problems: the default scenes from the states their files give, and the stiff-spring
@@ -145,9 +194,14 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
   std::ofstream md(out / "l8_sim_orders.md");
   md << "| Scene | horizon | reference agreement |";
   for (Integrator m : kMethods) md << " " << soa::integrator_name(m) << " |";
-  md << "\n|---|---|---|";
-  for (std::size_t i = 0; i < kMethods.size(); ++i) md << "---|";
+  md << " esdirk4 | cvode (slope) |\n|---|---|---|";
+  for (std::size_t i = 0; i < kMethods.size() + 2; ++i) md << "---|";
   md << "\n";
+  orders_gp << "cvode_built = " << (kHaveCvode ? 1 : 0) << "\n";
+  std::printf("  %s\n", cvode_status().c_str());
+  std::vector<CvodeComparison> comparisons;
+  const auto section_start = std::chrono::steady_clock::now();
+  double seconds_new = 0;  // esdirk4's and CVODE's sweeps
 
   for (const SimProblem& p : problems) {
     /// The reference: dopri5 at tolerance 1e-13, checked against RK4 at 20 000 and 40 000
@@ -165,18 +219,12 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
     const double lo = std::max(10 * ref.agreement, 1e-12);
     md << "| " << p.title << " | " << num(p.t_end, "%g") << " s | " << num(ref.agreement, "%.1e")
        << " |";
+    std::vector<Point> dopri5_pts;
     for (std::size_t i = 0; i < kMethods.size(); ++i) {
       const Integrator method = kMethods[i];
       const std::vector<Point> pts = sweep(p, ref.x, method, lo, budget, min_seconds);
-      for (const Point& pt : pts) {
-        const soa::SimulationSummary& s = pt.r.summary;
-        const double drift = s.max_energy_drift / std::max(1.0, std::abs(s.energy0));
-        csv << p.name << "," << soa::integrator_name(method) << "," << num(pt.h) << ","
-            << num(pt.tol) << "," << (pt.r.ok ? std::to_string(s.steps) : "") << ","
-            << (pt.r.ok ? std::to_string(s.evaluations) : "") << "," << num(pt.r.seconds) << ","
-            << num(pt.error) << "," << (pt.r.ok ? num(drift) : "") << ","
-            << csv_field(pt.r.ok ? "" : pt.r.diagnostic) << "\n";
-      }
+      write_points(csv, pts);
+      if (method == Integrator::DormandPrince) dopri5_pts = pts;
       const bool limited = method == Integrator::DormandPrince && stability_limited(pts);
       const double order = limited ? kNaN : observed_order(pts, lo);
       const int expected = method == Integrator::DormandPrince ? 5 : soa::integrator_order(method);
@@ -200,11 +248,79 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
                        num(order, "%.2f") + ")",
                    fits);
     }
+    // esdirk4 and CVODE beside the methods of kMethods, over the same tolerances as dopri5.
+    const auto new_start = std::chrono::steady_clock::now();
+    const std::vector<Point> esdirk_pts =
+        sweep(p, ref.x, Integrator::Esdirk, lo, budget, min_seconds);
+    const std::vector<Point> cvode_pts = sweep_cvode(p, ref.x, lo, budget, min_seconds);
+    seconds_new +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - new_start).count();
+    write_points(csv, esdirk_pts);
+    if (kHaveCvode) write_points(csv, cvode_pts);
+    for (const std::vector<Point>* pts : {&esdirk_pts, &cvode_pts}) {
+      if (pts == &cvode_pts && !kHaveCvode) {
+        orders_gp << "o_" << p.name << "_cvode = NaN\n";
+        md << " not built |";
+        continue;
+      }
+      const std::string name = pts->front().name;
+      const double slope = observed_order(*pts, lo);
+      orders_gp << "o_" << p.name << "_" << name << " = "
+                << (std::isnan(slope) ? std::string("NaN") : num(slope, "%.2f")) << "\n";
+      md << " " << num(slope, "%.2f") << " |";
+      std::printf("    %-17s %2zu runs, slope %5.2f against 1/evaluations%s\n", name.c_str(),
+                  pts->size(), slope,
+                  pts == &esdirk_pts ? " (order 4)" : " (BDF orders 1-5: not one order)");
+    }
+    if (kHaveCvode) {
+      /// CVODE converges: its error at the tightest tolerance reached (the sweep stops at the
+      /// reference's resolution) is below 1e-6 and below 1e-3 times its error at the loosest.
+      const Point* loose = nullptr;
+      const Point* tight = nullptr;
+      for (const Point& pt : cvode_pts) {
+        if (!pt.r.ok) continue;
+        if (!loose) loose = &pt;
+        tight = &pt;
+      }
+      const bool all_ok =
+          std::all_of(cvode_pts.begin(), cvode_pts.end(), [](const Point& pt) { return pt.r.ok; });
+      checks.check(p.name + ": cvode reaches t_end at every tolerance" +
+                       (all_ok ? std::string() : " (" + cvode_pts.back().r.diagnostic + ")"),
+                   all_ok);
+      if (loose && tight) {
+        checks.check(p.name + ": cvode error falls as its tolerance tightens (" +
+                         num(loose->error, "%.1e") + " at tol " + num(loose->tol, "%.0e") + ", " +
+                         num(tight->error, "%.1e") + " at " + num(tight->tol, "%.0e") + ")",
+                     tight->error <= 1e-3 * loose->error);
+        checks.check(p.name + ": cvode error at its tightest tolerance below 1e-6", tight->error,
+                     1e-6);
+      }
+    } else {
+      std::printf("    cvode: %s\n", cvode_status().c_str());
+    }
+    // The cost at equal error: l8_sim_cvode.md.
+    for (double level : {1e-4, 1e-6, 1e-8}) {
+      if (level < lo) continue;
+      CvodeComparison c;
+      c.scene = p.title;
+      c.level = level;
+      c.dopri5 = cost_at(dopri5_pts, level);
+      c.esdirk4 = cost_at(esdirk_pts, level);
+      c.cvode = cost_at(cvode_pts, level);
+      comparisons.push_back(c);
+    }
     md << "\n";
   }
-  md << "\nOrder found: slope of log(error) against log(h); for dopri5 against "
-        "log(1/evaluations). Expected: euler 1, symplectic-euler 1, rk4 4, dopri5 5, "
-        "implicit-midpoint 2.\n";
+  md << "\nOrder found: slope of log(error) against log(h); for the adaptive methods (dopri5, "
+        "esdirk4, cvode) against log(1/evaluations). Expected: euler 1, symplectic-euler 1, rk4 4, "
+        "dopri5 5, implicit-midpoint 2, esdirk4 4 (not checked: its Jacobians and Newton "
+        "iterations are part of the evaluations). CVODE changes its BDF order (1 to 5) with the "
+        "step: its slope is reported, not compared with an order. "
+     << cvode_status() << ".\n";
+  std::printf(
+      "  (esdirk4 and cvode sweeps: %.2f s of the section's %.2f s)\n", seconds_new,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - section_start).count());
+  checks.check("l8_sim_cvode.md written", write_cvode_comparison(out, comparisons));
   checks.check("l8_sim_work_precision.csv, l8_sim_orders.md written", bool(csv) && bool(md));
   csv.close();  // gnuplot reads them next
   orders_gp.close();
@@ -438,6 +554,7 @@ int main(int argc, char** argv) {
     work_precision_section(checks, out, quick, summary);
     energy_section(checks, out, quick);
     stiff_section(checks, out, quick, summary);
+    stiff_cvode_table(checks, out, quick);
     extreme_section(checks, out, quick, summary);
     summary_section(checks, out, summary);
   } catch (const std::exception& e) {
