@@ -265,6 +265,9 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
       }
       const std::string name = pts->front().name;
       const double slope = observed_order(*pts, lo);
+      MethodSummary& ms = pts == &esdirk_pts ? summary.of(Integrator::Esdirk) : summary.of(name);
+      ms.orders.emplace_back(p.name, slope);
+      if (p.name == summary.cost_scene) ms.error_at_cost = error_within(*pts, summary.cost_seconds);
       orders_gp << "o_" << p.name << "_" << name << " = "
                 << (std::isnan(slope) ? std::string("NaN") : num(slope, "%.2f")) << "\n";
       md << " " << num(slope, "%.2f") << " |";
@@ -554,7 +557,7 @@ int main(int argc, char** argv) {
     work_precision_section(checks, out, quick, summary);
     energy_section(checks, out, quick);
     stiff_section(checks, out, quick, summary);
-    stiff_cvode_table(checks, out, quick);
+    stiff_cvode_table(checks, out, quick, summary);
     extreme_section(checks, out, quick, summary);
     summary_section(checks, out, summary);
   } catch (const std::exception& e) {

@@ -27,13 +27,16 @@ struct Point {
 /// The sweep of one method on one problem: fixed steps \f$h = T / (n_0 2^j)\f$, or
 /// tolerances \f$10^{-2} \ldots 10^{-13}\f$ for the adaptive methods (dopri5, esdirk4), until
 /// the error reaches \p floor or a run takes longer than \p budget seconds. \p h_first, when
-/// given, replaces \f$T / n_0\f$ as the first step (\f$h = h_{\rm first} / 2^j\f$).
+/// given, replaces \f$T / n_0\f$ as the first step (\f$h = h_{\rm first} / 2^j\f$), and the
+/// runs go without the stiffness monitor: the caller took the step from the stability bound
+/// (its stiffness known), and the diagram shows the method at its largest stable step.
 inline std::vector<Point> sweep(const SimProblem& p, const soa::State& ref, Integrator method,
                                 double floor, double budget, double min_seconds,
                                 double h_first = kNaN) {
   std::vector<Point> points;
   soa::SimulationOptions opt;
   opt.method = method;
+  if (!std::isnan(h_first)) opt.stiffness = soa::StiffnessPolicy::Off;
   for (int j = 0; j < 40; ++j) {
     Point pt;
     pt.scene = p.name;

@@ -228,7 +228,9 @@ class StepperT {
     lu_.compute(A_);
     // Simplified Newton; stops when the estimated distance to the solution,
     // theta/(1 - theta) |dZ| with theta the contraction rate, is at rounding level
-    // (Hairer and Wanner, Solving ODEs II, IV.8).
+    // (Hairer and Wanner, Solving ODEs II, IV.8), or when the corrections stop contracting
+    // below sqrt(eps) (1 + |Z|): the rounding of F, eps cond(M) on an ill-conditioned chain,
+    // is reached, far below the step's truncation error.
     S last = S(0);
     for (int it = 0; it < 50; ++it) {
       if (it > 0) {
@@ -243,14 +245,16 @@ class StepperT {
       failure_.diverged = !Z.allFinite();
       if (failure_.diverged) return false;
       if (size <= tol) break;
+      const S stalled = std::sqrt(eps<S>()) * (S(1) + Z.norm());
       if (it > 0) {
         const S rate = size / last;
+        if (rate >= S(1) && size <= stalled) break;
         failure_.diverged = rate >= S(1);
         if (failure_.diverged) return false;
         if (rate / (S(1) - rate) * size <= tol) break;
       }
       last = size;
-      if (it == 49) return false;
+      if (it == 49 && size > stalled) return false;
     }
     u_ = Z.head(nv_);
     x1.beta = x0.beta + Z.tail(nv_);
