@@ -222,7 +222,10 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       }
       if (!std::isfinite(double(e))) blow_up("the error estimate is not finite", h);
       t += h;
-      h *= factor;
+      // esdirk4 keeps its step (and so its LU factorization of I - h gamma J, O(n_v^3)) when
+      // the controller would grow it by less than 20 % (as RADAU5: Hairer and Wanner, Solving
+      // ODEs II, IV.8).
+      if (!(opt.method == Integrator::Esdirk && factor >= S(1) && factor <= S(1.2))) h *= factor;
     } else {
       t = S(sum.steps + 1) * h;
     }
