@@ -230,7 +230,8 @@ class StepperT {
   /// (frozen during the step). Returns false when Newton does not converge. Allocates nothing
   /// once the first call has sized the workspace (shared with esdirk()).
   bool implicit_midpoint(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
-    if (!midpoint_solve(h, [&](const VecX<S>& Zh, VecX<S>& F) { rate_at(t + h / 2, x0, Zh, F); }))
+    if (!midpoint_solve(h, false,
+                        [&](const VecX<S>& Zh, VecX<S>& F) { rate_at(t + h / 2, x0, Zh, F); }))
       return false;
     u_ = Zs_[0].head(nv_);
     x1.beta = x0.beta + Zs_[0].tail(nv_);
@@ -254,8 +255,9 @@ class StepperT {
   bool variational(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
     require_coordinates_add(sys_.model());
     sys_.momentum(x0, p0_);
-    if (!midpoint_solve(
-            h, [&](const VecX<S>& Zh, VecX<S>& F) { canonical_rate(t + h / 2, x0.theta, Zh, F); }))
+    if (!midpoint_solve(h, true, [&](const VecX<S>& Zh, VecX<S>& F) {
+          canonical_rate(t + h / 2, x0.theta, Zh, F);
+        }))
       return false;
     u_ = Zs_[0].head(nv_);
     finish(x0.theta, x1);
@@ -375,9 +377,13 @@ class StepperT {
   // stopped when the estimated distance to the solution, theta/(1 - theta) |dZ| with theta
   // the contraction rate, is at rounding level (Hairer and Wanner, Solving ODEs II, IV.8).
   // The solution in Zs_[0]; false when Newton diverges or does not converge in 50
-  // iterations.
+  // iterations. With refresh (variational()), a diverging or slow (theta > 1/2) iteration
+  // takes the Jacobian again at the last iterate that contracted (at most kRefreshes times),
+  // unless the corrections are below sqrt(eps)/100 (1 + |Z|): then it is rounding noise
+  // that does not contract (the rate's evaluation is exact to about eps cond(M) |F|, above
+  // 16 eps |Z| on an ill-conditioned mass matrix), and the iteration has converged.
   template <class Rate>
-  bool midpoint_solve(S h, Rate&& rate) {
+  bool midpoint_solve(S h, bool refresh, Rate&& rate) {
     const int n2 = 2 * nv_;
     size_workspace();
     jac_valid_ = false;  // J_ and lu_ hold this method's matrix now, not esdirk()'s
@@ -397,7 +403,9 @@ class StepperT {
     }
     lu_.compute(A_);
     S last = S(0);
-    for (int it = 0; it < 50; ++it) {
+    int refreshes = 0;
+    // k counts the iterations since the last Jacobian.
+    for (int it = 0, k = 0; it < 50; ++it, ++k) {
       if (it > 0) {
         base_ = Z / S(2);
         rate(base_, F);
@@ -406,17 +414,46 @@ class StepperT {
       dZ_ = lu_.solve(r_);
       Z -= dZ_;
       const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
-      if (!Z.allFinite()) return false;
+      if (!Z.allFinite() && !refresh) return false;
       if (size <= tol) break;
-      if (it > 0) {
-        const S rate_ = size / last;
-        if (rate_ >= S(1)) return false;  // diverging
-        if (rate_ / (S(1) - rate_) * size <= tol) break;
+      const S theta = k > 0 ? size / last : S(0);
+      const bool diverging = !Z.allFinite() || theta >= S(1);
+      if (!refresh && diverging) return false;
+      // no contraction at the level of rounding noise
+      if (refresh && (diverging || theta > S(0.5)) && Z.allFinite() &&
+          size <= S(1e-2) * std::sqrt(eps<S>()) * (S(1) + Z.norm()))
+        break;
+      if (k > 0 && !diverging && theta / (S(1) - theta) * size <= tol) break;
+      // diverging or slow: the Jacobian again, at the last iterate that contracted
+      if (refresh && (diverging || theta > S(0.5) || it == 49)) {
+        if (refreshes == kRefreshes || it == 49) return false;
+        if (diverging) Z += dZ_;
+        jacobian_at(h, Z, F, rate);
+        ++refreshes;
+        k = -1;
+        continue;
       }
       last = size;
       if (it == 49) return false;
     }
     return true;
+  }
+  static constexpr int kRefreshes = 4;
+  // A_ = I - (h/2) dF/dZ at the midpoint offset Z/2 by forward differences, factorized; F
+  // gets the rate there.
+  template <class Rate>
+  void jacobian_at(S h, const VecX<S>& Z, VecX<S>& F, Rate& rate) {
+    base_ = Z / S(2);
+    rate(base_, F);
+    for (int i = 0; i < 2 * nv_; ++i) {
+      const S d = std::sqrt(eps<S>()) * (S(1) + std::abs(base_[i]));
+      r_ = base_;
+      r_[i] += d;
+      rate(r_, Fp_);
+      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
+      A_(i, i) += S(1);
+    }
+    lu_.compute(A_);
   }
 
   // The implicit methods' workspace, sized once.
