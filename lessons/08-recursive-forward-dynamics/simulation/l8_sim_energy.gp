@@ -1,6 +1,6 @@
 # Simulation report, section 2: |E(t) - E(0)| over a long horizon (the largest value in
 # windows that grow geometrically), log-log: the pendulum and the double pendulum at
-# h = 0.02 s, the seven-joint arm at h = 0.005 s; a cross marks the last window of a run
+# h = 0.02 s, the seven-joint arm at h = 0.002 s; a cross marks the last window of a run
 # stopped by a blow-up diagnostic.
 # Usage: gnuplot -e "outdir='DIR'" l8_sim_energy.gp
 #        (reads DIR/l8_sim_energy.csv and DIR/l8_sim_energy_stops.csv)
@@ -19,7 +19,7 @@ stops = outdir.'/l8_sim_energy_stops.csv'
 d(s, m) = (strcol(1) eq s && strcol(2) eq m && $4 > 0) ? $4 : 1/0
 methods = 'symplectic-euler implicit-midpoint rk4 variational'
 scenes = 'pendulum double_pendulum arm7'
-titles = "'pendulum (constant mass matrix), h = 0.02 s' 'double pendulum, h = 0.02 s' 'seven-joint arm, h = 0.005 s'"
+titles = "'pendulum (constant mass matrix), h = 0.02 s' 'double pendulum, h = 0.02 s' 'seven-joint arm, h = 0.002 s'"
 set multiplot layout 1,3
 do for [k=1:3] {
   set title word(titles, k)

@@ -247,7 +247,8 @@ class StepperT {
   ///     F(\theta, p) = \big(\mathcal M^{-1}(\theta)\,p,\ \partial T/\partial\theta
   ///     + Q\big) \f]
   /// (canonical_rate()), solved as implicit_midpoint() does: \f$Z = z_1 - z_0 = hF(z_0 +
-  /// Z/2)\f$ by simplified Newton with a finite-difference Jacobian. From \f$(\theta_0,
+  /// Z/2)\f$ by simplified Newton with a finite-difference Jacobian, taken again when Newton
+  /// diverges or contracts slowly (midpoint_solve() with refresh). From \f$(\theta_0,
   /// \beta_0)\f$: \f$p_0 = \mathcal M(\theta_0)\beta_0\f$ (ChainSystemT::momentum()), and after
   /// the step \f$\beta_1 = \mathcal M^{-1}(\theta_1)p_1\f$ (ChainSystemT::velocity()), all
   /// O(N). Needs hinges whose coordinates add (require_coordinates_add() throws otherwise).
@@ -438,6 +439,7 @@ class StepperT {
     }
     return true;
   }
+  // The most Jacobians midpoint_solve() takes again in one variational() step.
   static constexpr int kRefreshes = 4;
   // A_ = I - (h/2) dF/dZ at the midpoint offset Z/2 by forward differences, factorized; F
   // gets the rate there.
