@@ -101,6 +101,39 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
   }
 }
 
+// The variational step (implicit midpoint in (theta, p)): nothing per step once sized, on
+// chains of the hinges whose coordinates add, with gravity, springs, dampers and external
+// forces; its O(N) parts, p and dT/dtheta, M^-1 T and p_dot, nothing per call.
+TEST(dynamics_Allocation, NoneInAVariationalStep) {
+  Random<double> rnd(45);
+  soa::test::ChainOptions opt;
+  opt.gravity = true;
+  opt.springs = true;
+  const soa::HingeType types[] = {soa::HingeType::Revolute, soa::HingeType::Prismatic,
+                                  soa::HingeType::Helical, soa::HingeType::Universal};
+  for (int i = 0; i < 10; ++i) {
+    std::vector<soa::Body> bodies;
+    for (int j = 0; j < 1 + i % 6; ++j)
+      bodies.push_back(soa::test::detail::random_body(rnd, j, types[(i + j) % 4], opt));
+    const soa::Model m = soa::test::detail::finish_chain(std::move(bodies), opt);
+    const soa::State x0 = soa::test::random_state(rnd, m);
+    soa::ChainSystem sys(m, soa::test::random_forces(rnd, m));
+    soa::VecX<double> p(m.nv()), g(m.nv()), b(m.nv());
+    soa::Workspace ws(m);
+    EXPECT_EQ(allocations([&] { soa::kinetic_gradient(m, x0, ws, p, g); }), 0)
+        << "kinetic_gradient, case " << i;
+    EXPECT_EQ(allocations([&] { sys.velocity(x0, p, b); }), 0) << "velocity, case " << i;
+    EXPECT_EQ(allocations([&] { sys.momentum_rate(0.0, x0, g); }), 0)
+        << "momentum_rate, case " << i;
+    soa::Stepper stepper(sys);
+    soa::State x1 = x0;
+    bool ok = true;
+    EXPECT_EQ(allocations([&] { ok = stepper.variational(0.0, 1e-3, x0, x1) && ok; }), 0)
+        << "variational, case " << i;
+    EXPECT_TRUE(ok) << "case " << i;
+  }
+}
+
 // The stiffness monitor of soa::simulate (issue 16): an Arnoldi estimate of the dominant
 // eigenvalue, first and later checks, allocates nothing once built.
 TEST(dynamics_Allocation, NoneInAStiffnessCheck) {

@@ -120,15 +120,17 @@ inline std::vector<ExtremeCase> extreme_cases(bool quick) {
   return cases;
 }
 
-/// Implicit midpoint forms its Jacobian by 2 nv forward dynamics per step and factors it
-/// (\f$O(n^3)\f$): run up to this many links only. esdirk4 keeps its Jacobian across steps
+/// Implicit midpoint and the variational integrator form their Jacobian by 2 nv forward
+/// dynamics per step and factor it (\f$O(n^3)\f$): run up to this many links only. esdirk4 keeps its Jacobian across steps
 /// and runs on every case.
 constexpr int kImplicitMaxN = 100;
 
-/// The integrators of the extreme cases: the report's five and esdirk4.
+/// The integrators of the extreme cases: the report's five, esdirk4 and the variational
+/// integrator.
 inline std::vector<Integrator> extreme_methods() {
   std::vector<Integrator> m(kMethods.begin(), kMethods.end());
   m.push_back(Integrator::Esdirk);
+  m.push_back(Integrator::Variational);
   return m;
 }
 
@@ -278,7 +280,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
     for (const Integrator method : extreme_methods()) {
       ExtremeRun e;
       e.method = method;
-      if (method == Integrator::ImplicitMidpoint && p.m.n() > kImplicitMaxN) {
+      if ((method == Integrator::ImplicitMidpoint || method == Integrator::Variational) &&
+          p.m.n() > kImplicitMaxN) {
         res.runs.push_back(e);
         continue;
       }

@@ -101,6 +101,10 @@ inline cplx stability_function(Integrator m, cplx z) {
     }
     case Integrator::SymplecticEuler:
       break;  // not a Runge-Kutta method of y' = Ay: see amplification_radius()
+    case Integrator::Variational:
+      // The midpoint rule in (theta, p = M beta): on y' = Ay in (theta, beta) it is not the
+      // midpoint rule of A (p = M(theta) beta is nonlinear), so no R(z) of A's eigenvalues.
+      break;
   }
   return kNaN;
 }

@@ -73,6 +73,11 @@
   PREFIX template void forward_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
                                            const ExternalForces<S>&, WorkspaceT<S>&,             \
                                            ForwardDynamicsT<S>&, VecX<S>&);                      \
+  PREFIX template void mass_matrix_inverse_times<S>(const ModelT<S>&, const StateT<S>&,          \
+                                                    const VecX<S>&, WorkspaceT<S>&,              \
+                                                    ForwardDynamicsT<S>&, VecX<S>&);             \
+  PREFIX template void kinetic_gradient<S>(const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&,   \
+                                           VecX<S>&, VecX<S>&);                                  \
   PREFIX template struct InnovationsOperatorsT<S>;                                               \
   PREFIX template struct MassMatrixInverseT<S>;                                                  \
   PREFIX template void mass_matrix_inverse<S>(const ModelT<S>&, const StateT<S>&,                \

@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "soa/chain/forward_dynamics.hpp"
+#include "soa/chain/kinetic_gradient.hpp"
+#include "soa/chain/mass_matrix_inverse_times.hpp"
 #include "soa/free_body.hpp"
 
 namespace soa {
@@ -88,7 +90,11 @@ class ChainSystemT {
         control_(std::move(control)),
         ws_(m),
         fd_(m),
-        T_(VecX<S>::Zero(m.nv())) {}
+        T_(VecX<S>::Zero(m.nv())),
+        rest_(StateT<S>::rest(m)),
+        zero_(VecX<S>::Zero(m.nv())),
+        p_(m.nv()),
+        Q_(m.nv()) {}
 
   const ModelT<S>& model() const { return m_; }
   long evaluations() const { return evaluations_; }
@@ -98,6 +104,51 @@ class ChainSystemT {
     ++evaluations_;
     if (control_) control_(t, x, T_);
     forward_dynamics(m_, x, T_, f_ext_, ws_, fd_, beta_dot);
+  }
+
+  /// The canonical momentum \f$p = \partial T/\partial\beta = \mathcal M(\theta)\beta\f$
+  /// (soa::kinetic_gradient(), O(N)); hinges whose coordinates add only.
+  void momentum(const StateT<S>& x, VecX<S>& p) {
+    p.resize(m_.nv());
+    kinetic_gradient(m_, x, ws_, p, Q_);
+  }
+
+  /// \f$\beta = \mathcal M^{-1}(\theta)\,p\f$ at the configuration \p x.theta
+  /// (soa::mass_matrix_inverse_times(), O(N)); counted as an evaluation.
+  void velocity(const StateT<S>& x, const VecX<S>& p, VecX<S>& beta) {
+    ++evaluations_;
+    beta.resize(m_.nv());
+    mass_matrix_inverse_times(m_, x, p, ws_, fd_, beta);
+  }
+
+  /// The generalized forces \f$Q(t,\theta,\beta)\f$, everything but the inertia:
+  /// \f$Q = -T_{\rm ID}(\theta, \beta = 0, \dot\beta = 0) - c\,\beta + T(t, x)\f$, where the
+  /// inverse dynamics at rest (soa::inverse_dynamics()) is the hinge force that holds the
+  /// chain against gravity, the springs and the external forces, \f$c\f$ the dampers and
+  /// \f$T\f$ the control law. O(N).
+  void generalized_force(S t, const StateT<S>& x, VecX<S>& Q) {
+    rest_.theta = x.theta;
+    Q.resize(m_.nv());
+    inverse_dynamics(m_, rest_, zero_, f_ext_, ws_, Q);
+    Q = -Q;
+    for (const BodyT<S>& B : m_.bodies())
+      if (B.damping != S(0))
+        Q.segment(B.v_offset, B.hinge.nv()) -= B.damping * x.beta.segment(B.v_offset, B.hinge.nv());
+    if (control_) {
+      control_(t, x, T_);
+      Q += T_;
+    }
+  }
+
+  /// The rate of the canonical momentum (Lagrange's equations, \f$L = T - U\f$, the
+  /// potential \f$U\f$ and the non-conservative forces in \f$Q\f$):
+  /// \f$\dot p = \partial T/\partial\theta\,(\theta, \beta) + Q(t, \theta, \beta)\f$
+  /// (soa::kinetic_gradient(), generalized_force()). O(N); hinges whose coordinates add only.
+  void momentum_rate(S t, const StateT<S>& x, VecX<S>& p_dot) {
+    p_dot.resize(m_.nv());
+    kinetic_gradient(m_, x, ws_, p_, p_dot);
+    generalized_force(t, x, Q_);
+    p_dot += Q_;
   }
 
   /// The total energy: kinetic \f$\tfrac12\sum_k V^*(k) M(k) V(k)\f$, the potential of
@@ -143,6 +194,8 @@ class ChainSystemT {
   WorkspaceT<S> ws_;
   ForwardDynamicsT<S> fd_;
   VecX<S> T_;
+  StateT<S> rest_;        // generalized_force(): (theta, 0)
+  VecX<S> zero_, p_, Q_;  // beta_dot = 0; momentum_rate()'s p and Q
   long evaluations_ = 0;
 };
 using ChainSystem = ChainSystemT<double>;

@@ -21,6 +21,9 @@ enum class Integrator {
   ImplicitMidpoint,  ///< implicit midpoint (1-stage Gauss), order 2, A-stable, symmetric
   /// ESDIRK4(3)6L[2]SA, adaptive step, order 4 (embedded 3), L-stable: for stiff springs
   Esdirk,
+  /// implicit midpoint in the canonical variables \f$(\theta, p = \mathcal M\beta)\f$, order 2,
+  /// symplectic and symmetric (hinges whose coordinates add)
+  Variational,
 };
 
 /// The methods that choose their own step from a tolerance (`--tol`).
@@ -28,7 +31,8 @@ inline bool is_adaptive(Integrator i) {
   return i == Integrator::DormandPrince || i == Integrator::Esdirk;
 }
 
-/// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint".
+/// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint", "esdirk4",
+/// "variational".
 inline const char* integrator_name(Integrator i) {
   switch (i) {
     case Integrator::Euler:
@@ -43,17 +47,20 @@ inline const char* integrator_name(Integrator i) {
       return "implicit-midpoint";
     case Integrator::Esdirk:
       return "esdirk4";
+    case Integrator::Variational:
+      return "variational";
   }
   return "?";
 }
 
 /// The integrator called \p name; throws soa::Error listing the names.
 inline Integrator integrator_from_name(const std::string& name) {
-  for (Integrator i : {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4,
-                       Integrator::DormandPrince, Integrator::ImplicitMidpoint, Integrator::Esdirk})
+  for (Integrator i :
+       {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4, Integrator::DormandPrince,
+        Integrator::ImplicitMidpoint, Integrator::Esdirk, Integrator::Variational})
     if (name == integrator_name(i)) return i;
   throw Error("unknown integrator \"" + name +
-              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint, esdirk4)");
+              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint, esdirk4, variational)");
 }
 
 /// The order of convergence of each integrator.
@@ -67,6 +74,7 @@ inline int integrator_order(Integrator i) {
     case Integrator::DormandPrince:
       return 5;
     case Integrator::ImplicitMidpoint:
+    case Integrator::Variational:
       return 2;
     case Integrator::Esdirk:
       return 4;
@@ -101,6 +109,19 @@ struct Esdirk436 {
                                            169839.0 / 3864644,      -5247.0 / 225920};
 };
 
+/// Throws soa::Error (one line, naming the body and its hinge) unless every hinge of \p m
+/// has coordinates that add (soa::hinge_coordinates_add()): the configuration space of
+/// the variational integrator is a vector space.
+template <class S>
+void require_coordinates_add(const ModelT<S>& m) {
+  for (const BodyT<S>& B : m.bodies())
+    if (!hinge_coordinates_add(B.hinge.type))
+      throw Error(std::string("variational: body '") + B.name + "' has a " +
+                  hinge_type_name(B.hinge.type) +
+                  " hinge; the variational integrator needs hinges whose coordinates add "
+                  "(revolute, prismatic, helical, universal)");
+}
+
 /// Steps a ChainSystemT. Every method works in local coordinates around the step's start,
 /// \f$\theta = \theta_0 \oplus u\f$ (retract()), with \f$\dot u\f$ from local_rate(): a
 /// Runge-Kutta-Munthe-Kaas scheme, so quaternion hinges stay on the unit sphere by
@@ -117,7 +138,9 @@ class StepperT {
         Kb_(7, VecX<S>(nv_)),
         ru_(nv_),
         rud_(nv_),
-        rbd_(nv_) {}
+        rbd_(nv_),
+        p0_(nv_),
+        pc_(nv_) {}
 
   /// One step of an explicit Runge-Kutta method with the Butcher tableau \p a (lower
   /// triangular, s x s), \p b and \p c from \p x0 to \p x1; with \p b_err, also the local
@@ -207,59 +230,56 @@ class StepperT {
   /// (frozen during the step). Returns false when Newton does not converge. Allocates nothing
   /// once the first call has sized the workspace (shared with esdirk()).
   bool implicit_midpoint(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
-    const int n2 = 2 * nv_;
-    size_workspace();
-    jac_valid_ = false;  // J_ and lu_ hold this method's matrix now, not esdirk()'s
-    fresh_lu_needed_ = true;
-    VecX<S>& Z = Zs_[0];
-    VecX<S>& F = Fs_[0];
-    Z.setZero();
-    // J = I - (h/2) dF/dZ at the start of the step, by forward differences.
-    rate_at(t + h / 2, x0, Z, F);
-    r_.setZero();
-    for (int i = 0; i < n2; ++i) {
-      const S d = std::sqrt(eps<S>());
-      r_[i] = d;
-      rate_at(t + h / 2, x0, r_, Fp_);
-      r_[i] = S(0);
-      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
-      A_(i, i) += S(1);
-    }
-    lu_.compute(A_);
-    // Simplified Newton; stops when the estimated distance to the solution,
-    // theta/(1 - theta) |dZ| with theta the contraction rate, is at rounding level
-    // (Hairer and Wanner, Solving ODEs II, IV.8), or when the corrections stop contracting
-    // below sqrt(eps) (1 + |Z|): the rounding of F, eps cond(M) on an ill-conditioned chain,
-    // is reached, far below the step's truncation error.
-    S last = S(0);
-    for (int it = 0; it < 50; ++it) {
-      if (it > 0) {
-        base_ = Z / S(2);
-        rate_at(t + h / 2, x0, base_, F);
-      }
-      r_ = Z - h * F;
-      dZ_ = lu_.solve(r_);
-      Z -= dZ_;
-      const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
-      failure_ = NewtonFailure{1, size, false};
-      failure_.diverged = !Z.allFinite();
-      if (failure_.diverged) return false;
-      if (size <= tol) break;
-      const S stalled = std::sqrt(eps<S>()) * (S(1) + Z.norm());
-      if (it > 0) {
-        const S rate = size / last;
-        if (rate >= S(1) && size <= stalled) break;
-        failure_.diverged = rate >= S(1);
-        if (failure_.diverged) return false;
-        if (rate / (S(1) - rate) * size <= tol) break;
-      }
-      last = size;
-      if (it == 49 && size > stalled) return false;
-    }
-    u_ = Z.head(nv_);
-    x1.beta = x0.beta + Z.tail(nv_);
+    if (!midpoint_solve(h, false,
+                        [&](const VecX<S>& Zh, VecX<S>& F) { rate_at(t + h / 2, x0, Zh, F); }))
+      return false;
+    u_ = Zs_[0].head(nv_);
+    x1.beta = x0.beta + Zs_[0].tail(nv_);
     finish(x0.theta, x1);
     return true;
+  }
+
+  /// The variational integrator: the implicit midpoint rule in the canonical variables
+  /// \f$z = (\theta, p)\f$, \f$p = \mathcal M(\theta)\beta\f$, of \f$H = \tfrac12 p^*\mathcal
+  /// M^{-1}(\theta) p + U(\theta)\f$ (Hairer, Lubich and Wanner, Geometric Numerical
+  /// Integration, VI.3: a symplectic map, and symmetric):
+  /// \f[ z_1 = z_0 + h\,F\big(\tfrac12(z_0 + z_1)\big), \qquad
+  ///     F(\theta, p) = \big(\mathcal M^{-1}(\theta)\,p,\ \partial T/\partial\theta
+  ///     + Q\big) \f]
+  /// (canonical_rate()), solved as implicit_midpoint() does: \f$Z = z_1 - z_0 = hF(z_0 +
+  /// Z/2)\f$ by simplified Newton with a finite-difference Jacobian, taken again when Newton
+  /// diverges or contracts slowly (midpoint_solve() with refresh). From \f$(\theta_0,
+  /// \beta_0)\f$: \f$p_0 = \mathcal M(\theta_0)\beta_0\f$ (ChainSystemT::momentum()), and after
+  /// the step \f$\beta_1 = \mathcal M^{-1}(\theta_1)p_1\f$ (ChainSystemT::velocity()), all
+  /// O(N). Needs hinges whose coordinates add (require_coordinates_add() throws otherwise).
+  /// Returns false when Newton does not converge; allocates nothing once sized.
+  bool variational(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
+    require_coordinates_add(sys_.model());
+    sys_.momentum(x0, p0_);
+    if (!midpoint_solve(h, true, [&](const VecX<S>& Zh, VecX<S>& F) {
+          canonical_rate(t + h / 2, x0.theta, Zh, F);
+        }))
+      return false;
+    u_ = Zs_[0].head(nv_);
+    finish(x0.theta, x1);
+    pc_ = p0_ + Zs_[0].tail(nv_);
+    sys_.velocity(x1, pc_, x1.beta);
+    return true;
+  }
+
+  /// The canonical rate \f$F = (\dot\theta, \dot p) = (\beta,\ \partial T/\partial\theta
+  /// (\theta, \beta) + Q(t, \theta, \beta))\f$ with \f$\beta = \mathcal M^{-1}(\theta)p\f$ at
+  /// \f$(\theta, p) = (\theta_0 + u, p_0 + w)\f$, \p Zh = (u, w), \f$p_0\f$ that of the
+  /// current variational() step (ChainSystemT::velocity(), ChainSystemT::momentum_rate()).
+  void canonical_rate(S t, const VecX<S>& theta0, const VecX<S>& Zh, VecX<S>& F) {
+    ru_ = Zh.head(nv_);
+    retract(sys_.model(), theta0, ru_, x_.theta);
+    pc_ = p0_ + Zh.tail(nv_);
+    sys_.velocity(x_, pc_, x_.beta);
+    sys_.momentum_rate(t, x_, rbd_);
+    F.resize(2 * nv_);
+    F.head(nv_) = x_.beta;
+    F.tail(nv_) = rbd_;
   }
 
   /// The full rate \f$(\dot u, \dot\beta)\f$ at local coordinates \p Z = (u, w) around \p x0
@@ -355,6 +375,98 @@ class StepperT {
   }
 
  private:
+  // The midpoint equation Z = h F(Z/2) for the rate(offset, F) of an offset from the step's
+  // start: J = I - (h/2) dF/dZ at Z = 0 by forward differences, then simplified Newton,
+  // stopped when the estimated distance to the solution, theta/(1 - theta) |dZ| with theta
+  // the contraction rate, is at rounding level (Hairer and Wanner, Solving ODEs II, IV.8).
+  // The solution in Zs_[0]; false when Newton diverges or does not converge in 50
+  // iterations. With refresh (variational()), a diverging or slow (theta > 1/2) iteration
+  // takes the Jacobian again at the last iterate that contracted (at most kRefreshes times),
+  // unless the corrections are below sqrt(eps)/100 (1 + |Z|): then it is rounding noise
+  // that does not contract (the rate's evaluation is exact to about eps cond(M) |F|, above
+  // 16 eps |Z| on an ill-conditioned mass matrix), and the iteration has converged.
+  template <class Rate>
+  bool midpoint_solve(S h, bool refresh, Rate&& rate) {
+    const int n2 = 2 * nv_;
+    size_workspace();
+    jac_valid_ = false;  // J_ and lu_ hold this method's matrix now, not esdirk()'s
+    fresh_lu_needed_ = true;
+    VecX<S>& Z = Zs_[0];
+    VecX<S>& F = Fs_[0];
+    Z.setZero();
+    rate(Z, F);
+    r_.setZero();
+    for (int i = 0; i < n2; ++i) {
+      const S d = std::sqrt(eps<S>());
+      r_[i] = d;
+      rate(r_, Fp_);
+      r_[i] = S(0);
+      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
+      A_(i, i) += S(1);
+    }
+    lu_.compute(A_);
+    S last = S(0);
+    int refreshes = 0;
+    // k counts the iterations since the last Jacobian.
+    for (int it = 0, k = 0; it < 50; ++it, ++k) {
+      if (it > 0) {
+        base_ = Z / S(2);
+        rate(base_, F);
+      }
+      r_ = Z - h * F;
+      dZ_ = lu_.solve(r_);
+      Z -= dZ_;
+      const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
+      failure_ = NewtonFailure{1, size, !Z.allFinite()};
+      if (!Z.allFinite() && !refresh) return false;
+      if (size <= tol) break;
+      const S theta = k > 0 ? size / last : S(0);
+      const bool diverging = !Z.allFinite() || theta >= S(1);
+      // implicit midpoint (no refresh): corrections that stopped contracting below
+      // sqrt(eps) (1 + |Z|) have reached the rounding of F, eps cond(M) on an ill-conditioned
+      // chain, far below the step's truncation error: converged as far as it can
+      const S stalled = std::sqrt(eps<S>()) * (S(1) + Z.norm());
+      if (!refresh && diverging && Z.allFinite() && size <= stalled) break;
+      failure_.diverged = diverging;
+      if (!refresh && diverging) return false;
+      // no contraction at the level of rounding noise
+      if (refresh && (diverging || theta > S(0.5)) && Z.allFinite() &&
+          size <= S(1e-2) * std::sqrt(eps<S>()) * (S(1) + Z.norm()))
+        break;
+      if (k > 0 && !diverging && theta / (S(1) - theta) * size <= tol) break;
+      // diverging or slow: the Jacobian again, at the last iterate that contracted
+      if (refresh && (diverging || theta > S(0.5) || it == 49)) {
+        if (refreshes == kRefreshes || it == 49) return false;
+        if (diverging) Z += dZ_;
+        jacobian_at(h, Z, F, rate);
+        ++refreshes;
+        k = -1;
+        continue;
+      }
+      last = size;
+      if (it == 49 && !(!refresh && size <= stalled)) return false;
+    }
+    return true;
+  }
+  // The most Jacobians midpoint_solve() takes again in one variational() step.
+  static constexpr int kRefreshes = 4;
+  // A_ = I - (h/2) dF/dZ at the midpoint offset Z/2 by forward differences, factorized; F
+  // gets the rate there.
+  template <class Rate>
+  void jacobian_at(S h, const VecX<S>& Z, VecX<S>& F, Rate& rate) {
+    base_ = Z / S(2);
+    rate(base_, F);
+    for (int i = 0; i < 2 * nv_; ++i) {
+      const S d = std::sqrt(eps<S>()) * (S(1) + std::abs(base_[i]));
+      r_ = base_;
+      r_[i] += d;
+      rate(r_, Fp_);
+      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
+      A_(i, i) += S(1);
+    }
+    lu_.compute(A_);
+  }
+
   // The implicit methods' workspace, sized once.
   void size_workspace() {
     const int n2 = 2 * nv_;
@@ -455,6 +567,7 @@ class StepperT {
   VecX<S> u_;
   std::vector<VecX<S>> Ku_, Kb_;
   VecX<S> ru_, rud_, rbd_;  // rate_at()
+  VecX<S> p0_, pc_;         // variational(): p at the start, p at the evaluation
   // esdirk(): stages, Newton, Jacobian and its factorization.
   std::vector<VecX<S>> Zs_, Fs_;
   VecX<S> base_, r_, dZ_, Fp_, scale_;

@@ -72,6 +72,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
                 " needs a tolerance (--tol)");
   if (!adaptive && !(opt.dt > S(0))) throw Error("simulate: a fixed-step method needs --dt > 0");
   if (!(opt.t_end >= S(0))) throw Error("simulate: the end time must be >= 0");
+  if (opt.method == Integrator::Variational) require_coordinates_add(sys.model());
   if (!adaptive && !(double(opt.t_end) / double(opt.dt) <= kMaxSteps)) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
@@ -173,6 +174,9 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
           break;
         case Integrator::Esdirk:
           ok = stepper.esdirk(t, h, x, x1, err);
+          break;
+        case Integrator::Variational:
+          ok = stepper.variational(t, h, x, x1);
           break;
       }
     } catch (const Error& e) {
