@@ -26,11 +26,14 @@
 #include <Eigen/Eigenvalues>
 #include <complex>
 
+#include "fit.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
 #include "soa/soa.hpp"
 
 namespace {
+
+using soa::test::slope;
 
 using soa::Integrator;
 using soa::test::Random;
@@ -91,17 +94,6 @@ double distance(const soa::Model& m, const State& a, const State& b) {
     d += dq;
   }
   return std::sqrt(d);
-}
-
-// The least-squares slope of log(err) against log(x).
-double slope(const std::vector<double>& x, const std::vector<double>& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(err[i]);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 TEST(simulation_Order, EachMethodConvergesAtItsOrder) {

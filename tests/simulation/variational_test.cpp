@@ -19,12 +19,15 @@
 #include <utility>
 #include <vector>
 
+#include "fit.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
 #include "soa/scene.hpp"
 #include "soa/soa.hpp"
 
 namespace {
+
+using soa::test::slope;
 
 using soa::HingeType;
 using soa::Integrator;
@@ -175,16 +178,6 @@ State run(const Scene& s, Integrator method, double dt, double tol, double t_end
     if (energy) energy->push_back(sys.energy(y));
   });
   return x;
-}
-
-double slope(const std::vector<double>& x, const std::vector<double>& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = double(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(err[i]);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 TEST(simulation_Variational, ConvergesAtOrderTwo) {
