@@ -378,6 +378,42 @@ TEST(simulation_Stiffness, NothingFinishesBeyondTheBoundUnnoticed) {
               100.0 * double(inside.evaluations - 4 * n) / double(4 * n));
 }
 
+// A mode that grows by itself is the motion, not an instability: the inverted pendulum
+// (lambda = sqrt(m g r / I), real) at h lambda = 1.2 is followed by RK4 (|R| < e^{h lambda}),
+// while symplectic Euler, whose first-order step leaves (h lambda)^2 / 2 per step, is stopped.
+TEST(simulation_Stiffness, AGrowingModeIsFollowedByRK4) {
+  soa::Body b;
+  b.name = "inverted";
+  b.M = soa::SpatialInertia::from_cm(1, soa::Vec3<double>(0, 0, 0.5),
+                                     soa::Mat3<double>::Identity() * 0.01);
+  b.hinge.type = soa::HingeType::Revolute;
+  b.hinge.axis = soa::Vec3<double>::UnitY();
+  Scene s{soa::Model::from_base_first({b}), {}};
+  s.m.gravity = soa::Vec3<double>(0, 0, -9.81);
+  s.x0 = State::rest(s.m);
+  s.x0.theta[0] = 1e-3;
+  const double lambda = std::sqrt(9.81 * 0.5 / (0.01 + 0.25)), h = 1.2 / lambda;
+  for (Integrator I : {Integrator::RK4, Integrator::SymplecticEuler}) {
+    soa::ChainSystem sys(s.m, {});
+    soa::SimulationOptions opt;
+    opt.method = I;
+    opt.dt = h;
+    opt.t_end = 3 * h;
+    State x = s.x0;
+    std::string msg = "(no error)";
+    try {
+      const soa::SimulationSummary sum = soa::simulate(sys, x, opt, [](double, const State&) {});
+      EXPECT_NEAR(sum.max_h_lambda, 1.2, 0.05) << soa::integrator_name(I);
+    } catch (const soa::Error& e) {
+      msg = e.what();
+    }
+    if (I == Integrator::RK4)
+      EXPECT_EQ(msg, "(no error)");
+    else
+      EXPECT_NE(msg.find("beyond the stability bound at t = 0 s"), std::string::npos) << msg;
+  }
+}
+
 // The bound the monitor applies is the method's: RK4 runs at 0.95 of 2.83 / omega on an
 // undamped spring and is stopped at 1.05; symplectic Euler at 0.95 and 1.05 of 2 / omega.
 TEST(simulation_Stiffness, TheBoundIsTheMethods) {

@@ -390,11 +390,14 @@ double median(std::vector<double>& v) {
   return v[v.size() / 2];
 }
 
-/// The time in a blow-up diagnostic of soa::simulate() ("... blow-up at t = 73.12 s, ..."),
-/// NaN when there is none.
+/// The time in a diagnostic of soa::simulate() that stopped a run ("... blow-up at t = 73.12
+/// s, ...", "... beyond the stability bound at t = 2 s, ..."), NaN when there is none.
 double blow_up_time(const std::string& diagnostic) {
-  const std::size_t at = diagnostic.find("blow-up at t = ");
-  return at == std::string::npos ? kNaN : std::atof(diagnostic.c_str() + at + 15);
+  for (const std::string key : {"blow-up at t = ", "stability bound at t = "}) {
+    const std::size_t at = diagnostic.find(key);
+    if (at != std::string::npos) return std::atof(diagnostic.c_str() + at + key.size());
+  }
+  return kNaN;
 }
 
 EnergyTrace energy_trace(const SimProblem& p, Integrator method, double h) {
@@ -515,7 +518,9 @@ struct EnergyScene {
 
 /// The sentence on a run that stopped: its time and its diagnostic's reason.
 std::string stop_sentence(const EnergyTrace& tr) {
-  const std::size_t colon = tr.diagnostic.find("): ", tr.diagnostic.find("blow-up at t = "));
+  const std::size_t colon = tr.diagnostic.find("beyond the stability bound") != std::string::npos
+                                ? std::string::npos  // the monitor's message, whole
+                                : tr.diagnostic.find("): ", tr.diagnostic.find("blow-up at t = "));
   const std::size_t semi = tr.diagnostic.find("; estimated", colon);
   const std::string why =
       colon == std::string::npos
