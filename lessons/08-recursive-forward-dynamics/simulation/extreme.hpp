@@ -342,6 +342,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
                   : e.r.ok ? num(e.error, "%.1e").c_str()
                            : "diag");
     std::printf("\n");
+    if (!res.ref.diagnostic.empty() && !massless_tip)
+      std::printf("    reference: %s\n", res.ref.diagnostic.c_str());
     results.push_back(std::move(res));
   }
 

