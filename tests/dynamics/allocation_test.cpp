@@ -65,6 +65,9 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
     std::vector<soa::SpatialInertia> R(std::size_t(m.n()));
     EXPECT_EQ(allocations([&] { soa::mass_matrix_crb(m, x, ws, R, M); }), 0)
         << "mass_matrix_crb, case " << i;
+    soa::MassMatrixInertial mi(m);
+    EXPECT_EQ(allocations([&] { soa::mass_matrix_inertial(m, x, ws, mi, M); }), 0)
+        << "mass_matrix_inertial, case " << i;
     soa::Articulated art(m);
     EXPECT_EQ(allocations([&] { soa::articulated_inertias(m, x, ws, art); }), 0)
         << "articulated_inertias, case " << i;

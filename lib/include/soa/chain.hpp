@@ -15,6 +15,7 @@
 #include "soa/chain/jacobian.hpp"
 #include "soa/chain/kinematics.hpp"
 #include "soa/chain/kinetic_gradient.hpp"
+#include "soa/chain/mass_matrix_inertial.hpp"
 #include "soa/chain/mass_matrix_inverse.hpp"
 #include "soa/chain/mass_matrix_inverse_times.hpp"
 #include "soa/chain/mass_matrix_inverse_upsilon.hpp"

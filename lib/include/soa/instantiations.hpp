@@ -52,6 +52,10 @@
   PREFIX template void composite_inertias<S>(const ModelT<S>&, const WorkspaceT<S>&,             \
                                              std::vector<SpatialInertiaT<S>>&);                  \
   PREFIX template MatX<S> composite_inertia_operator<S>(const ModelT<S>&, const WorkspaceT<S>&); \
+  PREFIX template struct MassMatrixInertialT<S>;                                                 \
+  PREFIX template void mass_matrix_inertial<S>(const ModelT<S>&, const StateT<S>&,               \
+                                               const WorkspaceT<S>&, MassMatrixInertialT<S>&,    \
+                                               MatX<S>&);                                        \
   PREFIX template void mass_matrix_crb<S>(const ModelT<S>&, const StateT<S>&,                    \
                                           const WorkspaceT<S>&,                                  \
                                           std::vector<SpatialInertiaT<S>>&, MatX<S>&);           \

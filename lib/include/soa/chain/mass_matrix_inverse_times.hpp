@@ -51,8 +51,8 @@ void mass_matrix_inverse_times(const ModelT<S>& m, const StateT<S>& x, const Vec
     const AccelerationT<S> alpha_plus =
         k < m.n() ? ws.phi[k - 1].transpose_apply(alpha) : AccelerationT<S>();
     S* b = out.data() + B.v_offset;
-    const HingeVector<S> Ga = art.G[k - 1].transpose() * alpha_plus.vector();
-    for (int i = 0; i < nv; ++i) b[i] = fd.nu[k - 1][i] - Ga[i];
+    for (int i = 0; i < nv; ++i)
+      b[i] = fd.nu[k - 1][i] - art.G[k - 1].col(i).dot(alpha_plus.vector());
     alpha = AccelerationT<S>(Vec6<S>(
         alpha_plus.vector() + B.hinge.H_star_times(x.theta.data() + B.q_offset, b).vector()));
   }
