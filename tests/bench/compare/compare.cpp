@@ -533,7 +533,7 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
       "`mj_forward` without its constraint, sensor and actuator stages (O(N^3) on a chain, "
       "whose M is dense)."};
   for (int q = 0; q < kQuantities; ++q) {
-    md << "\n### " << kQuantityTitle[q] << "\n\nTimed: " << calls[q] << "\n\n";
+    md << "\n**" << kQuantityTitle[q] << ".** Timed: " << calls[q] << "\n\n";
     md << "| N | ours ns/joint | KDL ns/joint | MuJoCo ns/joint | KDL / ours | MuJoCo / ours | "
           "error ours | error KDL | error MuJoCo |\n";
     md << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
