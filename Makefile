@@ -6,6 +6,8 @@
 #                   exercise's next hint
 #   make docs       Doxygen course notes (offline math, gnuplot figures) in build/docs/html
 #   make bench      Google Benchmark results and the soa command's scale (cli_scale) in build/bench/
+#   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
+#                   build/bench/compare.md (not part of make test; installs those two)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug (in
 # build/debug), TESTS=regex (make test runs only the ctest tests it matches).
 
@@ -27,13 +29,20 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
   libjs-three chromium pkgconf liburdfdom-dev libsundials-dev
+# The peers of `make compare` (tests/bench/compare/), only for that target.
+COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
-.PHONY: all run test exercises stub-sums docs bench deps configure build clean format
+.PHONY: all run test exercises stub-sums docs bench compare deps compare-deps configure \
+  build clean format
 
 all: build
 
-deps:
-	@missing=""; for p in $(PACKAGES); do \
+# One recipe for both lists: the packages in DEPS_PACKAGES that are missing, installed as root
+# or through sudo, else the apt-get line to type and a stop.
+deps: DEPS_PACKAGES = $(PACKAGES)
+compare-deps: DEPS_PACKAGES = $(PACKAGES) $(COMPARE_PACKAGES)
+deps compare-deps:
+	@missing=""; for p in $(DEPS_PACKAGES); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed$$' \
 	    || missing="$$missing $$p"; \
 	done; \
@@ -117,6 +126,17 @@ docs: build
 
 bench: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target bench
+
+# The library side by side with Orocos KDL and MuJoCo (tests/bench/compare/): its own build,
+# build/compare (double and long double only, SOA_COMPARE=ON), then the program writes
+# build/bench/compare.md and compare.csv.
+CMP_DIR := build/compare
+compare: compare-deps
+	@mkdir -p build
+	@cmake -S . -B $(CMP_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOA_COMPARE=ON \
+	  "-DSOA_PRECISIONS=double;long_double" -DSOA_OUTPUT_DIR=$(CURDIR)/build \
+	  >$(CMP_DIR).cmake.log || { cat $(CMP_DIR).cmake.log; exit 1; }
+	cmake --build $(CMP_DIR) -j $(JOBS) --target compare_report
 
 format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')

@@ -8,7 +8,8 @@
 #   4. copy the 3D viewers the tour wrote (COURSE/NN-topic/<name>/index.html, docs/viewer.md)
 #      into HTML/viewers/<name>/, where the lesson pages embed them;
 #   5. check that no page loads anything from the network.
-# Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, TABLES, MATHJAX.
+# Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, TABLES, MATHJAX; BENCH (optional),
+# the folder of `make compare`'s compare.md.
 cmake_minimum_required(VERSION 3.25)
 foreach(var DOXYGEN DOXYFILE HTML COURSE FIGURES TABLES MATHJAX)
   if(NOT DEFINED ${var})
@@ -47,6 +48,22 @@ foreach(table IN LISTS tables)
   list(APPEND seen "${name}")
   file(COPY_FILE "${table}" "${TABLES}/${name}")
 endforeach()
+
+# The comparison with Orocos KDL and MuJoCo (`make compare`, tests/bench/compare/) writes
+# BENCH/compare.md in its own build; the notes include it as make_compare.md when it is
+# there, else a line that says how to get it (BENCH is optional).
+set(compare_table "${TABLES}/make_compare.md")
+if(EXISTS "${compare_table}")
+  message(FATAL_ERROR "docs: a lesson wrote a table named make_compare.md; the name is the "
+                      "comparison's (make compare)")
+endif()
+if(DEFINED BENCH AND EXISTS "${BENCH}/compare.md")
+  file(COPY_FILE "${BENCH}/compare.md" "${compare_table}")
+else()
+  file(WRITE "${compare_table}"
+       "*No comparison in this build's output: run `make compare` (it writes "
+       "`build/bench/compare.md`), then `make docs` again.*\n")
+endif()
 
 # 2. Doxygen, on a clean output folder (no stale pages of removed lessons).
 if(NOT HTML MATCHES "/docs/html$")
