@@ -15,7 +15,7 @@
 // The timed calls, each from joint positions and rates to the result, kinematics included:
 //   T    ours: soa::inverse_dynamics; KDL: ChainIdSolver_RNE::CartToJnt; MuJoCo: mj_kinematics,
 //        mj_comPos, mj_comVel, mj_rne (with acceleration).
-//   M    ours: soa::update_phi + soa::mass_matrix_crb; KDL: ChainDynParam::JntToMass; MuJoCo:
+//   M    ours: soa::update_phi + soa::mass_matrix_inertial; KDL: ChainDynParam::JntToMass; MuJoCo:
 //        mj_kinematics, mj_comPos, mj_crb, mj_fullM (to dense, as the others give it).
 //   qdd  ours: soa::forward_dynamics (articulated bodies, O(N)); KDL:
 //        ChainHdSolver_Vereshchagin::CartToJnt with no constraint (O(N)); MuJoCo: what
@@ -313,13 +313,13 @@ Result run_chain(int n, const Options& o) {
   // Ours.
   soa::Workspace ws(model);
   soa::ForwardDynamics fd(model);
-  std::vector<soa::SpatialInertia> R(static_cast<std::size_t>(n));
+  soa::MassMatrixInertial mw(model);
   VecX<double> T_ours(n), qdd_ours(n);
   soa::MatX<double> M_ours(n, n);
   auto ours_inverse = [&] { soa::inverse_dynamics(model, c.x, c.beta_dot, c.f_ext, ws, T_ours); };
   auto ours_mass = [&] {
     soa::update_phi(model, c.x.theta, ws);
-    soa::mass_matrix_crb(model, c.x, ws, R, M_ours);
+    soa::mass_matrix_inertial(model, c.x, ws, mw, M_ours);
   };
   auto ours_forward = [&] { soa::forward_dynamics(model, c.x, c.T, c.f_ext, ws, fd, qdd_ours); };
   ours_inverse();
@@ -525,7 +525,7 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   const char* calls[kQuantities] = {
       "ours `soa::inverse_dynamics`; KDL `ChainIdSolver_RNE::CartToJnt`; MuJoCo "
       "`mj_kinematics`, `mj_comPos`, `mj_comVel`, `mj_rne` (with acceleration).",
-      "ours `soa::update_phi` + `soa::mass_matrix_crb`; KDL `ChainDynParam::JntToMass`; MuJoCo "
+      "ours `soa::update_phi` + `soa::mass_matrix_inertial`; KDL `ChainDynParam::JntToMass`; MuJoCo "
       "`mj_kinematics`, `mj_comPos`, `mj_crb`, `mj_fullM` (dense, as the others give it).",
       "ours `soa::forward_dynamics` (articulated bodies, O(N)); KDL "
       "`ChainHdSolver_Vereshchagin::CartToJnt` with no constraint (O(N)); MuJoCo `mj_kinematics`, "
