@@ -1,6 +1,8 @@
 // Explicit instantiations of the library's templates in the three precisions the course
 // uses (the list is soa/instantiations.hpp): a template that does not compile for float or
-// long double fails here. One file per precision, so that the three compile in parallel.
+// long double fails here. One generated unit per precision and group (instantiate.cpp.in,
+// lib/CMakeLists.txt), so that they compile in parallel and each is small enough for GCC to
+// inline what the recursions call.
 #pragma once
 
 #define SOA_INSTANTIATING

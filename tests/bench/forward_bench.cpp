@@ -102,7 +102,7 @@ BENCHMARK(ForwardDynamicsCRB)
     ->Arg(50)
     ->Arg(100)
     ->Arg(200);
-BENCHMARK(MassMatrixInverse)->Arg(7)->Arg(1000);
+BENCHMARK(MassMatrixInverse)->Arg(7)->Arg(50)->Arg(200)->Arg(1000);
 BENCHMARK(MassMatrixInverse)->RangeMultiplier(2)->Range(1, 1024)->Complexity();
 BENCHMARK(MassMatrixInverseUpsilon)->Arg(7)->Arg(1000);
 BENCHMARK(MassMatrixInverseUpsilon)->RangeMultiplier(2)->Range(1, 1024)->Complexity();

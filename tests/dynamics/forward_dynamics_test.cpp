@@ -12,11 +12,14 @@
 // - the lean storage (ForwardDynamics::lean(), for million-body chains) gives bitwise the
 //   result, the accelerations alpha(k) and the errors of the full storage;
 // - a lazy workspace (Workspace::lazy()) holds only the parts the functions run fill, with
-//   bitwise the results of a full one.
+//   bitwise the results of a full one;
+// - the fast paths for hinges about a coordinate axis (Model::fast_paths) against the general
+//   path, on chains whose one-dof axes are +-e_i and half of whose placements do not rotate.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "dynamics_support.hpp"
@@ -53,6 +56,34 @@ TEST(dynamics_Forward, AgreesWithCompositeBodiesAndLDLT) {
     worst.add(soa::test::rel(bd, ref) / (kEps * c.m.nv() * mc.cond()), i);
   }
   EXPECT_LE(worst.value(), 10.0);
+}
+
+// The fast paths (P H* as a column of P, plane rotations of the articulated inertias) give the
+// general path's result within rounding: the two differ only in the order of the same sums
+// and in products with exact zeros and ones.
+TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
+  Random<double> rnd;
+  std::mt19937 g(soa::test::kSeed);
+  Worst worst("|bd_fast - bd_general|/|bd_general| / (eps n cond(M))");
+  int fast_bodies = 0;
+  for (int i = 0; i < kCases; ++i) {
+    DynamicsCase<double> c(rnd, i);
+    for (int k = 1; k <= c.m.n(); ++k) {
+      soa::Body& B = c.m.body(k);
+      if (B.hinge.nv() != 1) continue;
+      B.hinge.axis = soa::Vec3<double>::Zero();
+      B.hinge.axis[int(g() % 3)] = g() % 2 ? 1.0 : -1.0;
+      if (g() % 2) B.placement = soa::Pose(soa::Mat3<double>::Identity(), B.placement.l());
+      if (k > 1 && B.placement.R().isIdentity(0)) ++fast_bodies;
+    }
+    const MassAndBias<double> mc(c);
+    const VecX fast = forward(c);
+    c.m.fast_paths = false;
+    const VecX general = forward(c);
+    worst.add(soa::test::rel(fast, general) / (kEps * c.m.nv() * mc.cond()), i);
+  }
+  EXPECT_GT(fast_bodies, kCases);  // the fast paths were taken
+  EXPECT_LE(worst.value(), 1.0);
 }
 
 TEST(dynamics_Forward, AgreesWithTheOperatorForm) {

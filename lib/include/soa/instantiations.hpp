@@ -17,7 +17,12 @@
 #include "soa/spatial_vector.hpp"
 
 // clang-format off
-#define SOA_TEMPLATES(PREFIX, S)                                                                 \
+// The list in six groups, each compiled as its own translation unit per precision
+// (lib/CMakeLists.txt, lib/src/instantiate.cpp.in), which declares the other groups extern:
+// each template is compiled once, in the small unit of its group. In one unit of everything
+// GCC's inlining limits for the whole unit left the recursions' small Eigen functions out of
+// line, and the linker kept that copy (forward dynamics 1.6x slower, issue 17).
+#define SOA_TEMPLATES_CORE(PREFIX, S)                                                            \
   PREFIX template class PoseT<S>;                                                                \
   PREFIX template class PhiT<S>;                                                                 \
   PREFIX template class SpatialInertiaT<S>;                                                      \
@@ -37,21 +42,32 @@
   PREFIX template struct HingeT<S>;                                                              \
   PREFIX template class ModelT<S>;                                                               \
   PREFIX template struct WorkspaceT<S>;                                                          \
-  PREFIX template struct OperatorsT<S>;                                                          \
   PREFIX template void update_phi<S>(const ModelT<S>&, const VecX<S>&, WorkspaceT<S>&);          \
   PREFIX template void update_poses<S>(const ModelT<S>&, WorkspaceT<S>&);                        \
   PREFIX template void update_velocities<S>(const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&); \
   PREFIX template void update_accelerations<S>(const ModelT<S>&, const StateT<S>&, const S*,     \
                                                const AccelerationT<S>&, WorkspaceT<S>&);         \
-  PREFIX template void inverse_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
-                                           const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);  \
   PREFIX template void jacobian<S>(const ModelT<S>&, const VecX<S>&, const WorkspaceT<S>&, int,  \
                                    const PoseT<S>&, Eigen::Matrix<S, 6, Eigen::Dynamic>&);       \
   PREFIX template AccelerationT<S> jacobian_dot_times_beta<S>(                                   \
       const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&, int, const PoseT<S>&);                 \
+  PREFIX template MatX<S> composite_inertia_operator<S>(const ModelT<S>&, const WorkspaceT<S>&); \
+  PREFIX template struct ArticulatedT<S>;                                                        \
+  PREFIX template Mat6<S> transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&);                \
+  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
+                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int, S);   \
+  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
+                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int);      \
+  PREFIX template void articulated_inertias<S>(const ModelT<S>&, const StateT<S>&,               \
+                                               const WorkspaceT<S>&, ArticulatedT<S>&);
+#define SOA_TEMPLATES_DENSE(PREFIX, S)                                                           \
+  PREFIX template struct OperatorsT<S>;                                                          \
+  PREFIX template struct InnovationsOperatorsT<S>;
+#define SOA_TEMPLATES_ID(PREFIX, S)                                                              \
+  PREFIX template void inverse_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
+                                           const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);  \
   PREFIX template void composite_inertias<S>(const ModelT<S>&, const WorkspaceT<S>&,             \
                                              std::vector<SpatialInertiaT<S>>&);                  \
-  PREFIX template MatX<S> composite_inertia_operator<S>(const ModelT<S>&, const WorkspaceT<S>&); \
   PREFIX template struct MassMatrixInertialT<S>;                                                 \
   PREFIX template void mass_matrix_inertial<S>(const ModelT<S>&, const StateT<S>&,               \
                                                const WorkspaceT<S>&, MassMatrixInertialT<S>&,    \
@@ -61,18 +77,11 @@
                                           std::vector<SpatialInertiaT<S>>&, MatX<S>&);           \
   PREFIX template void inverse_dynamics_composite<S>(                                            \
       const ModelT<S>&, const StateT<S>&, const VecX<S>&, const ExternalForces<S>&,              \
-      WorkspaceT<S>&, std::vector<SpatialInertiaT<S>>&, VecX<S>&);                               \
-  PREFIX template struct ArticulatedT<S>;                                                        \
-  PREFIX template void transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&, Mat6<S>&);         \
-  PREFIX template Mat6<S> transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&);                \
-  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
-                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int, S);   \
-  PREFIX template S singular_D_ratio<S>(const ModelT<S>&, const StateT<S>&,                      \
-                                        const WorkspaceT<S>&, const ArticulatedT<S>&, int);      \
+      WorkspaceT<S>&, std::vector<SpatialInertiaT<S>>&, VecX<S>&);
+#define SOA_TEMPLATES_FD(PREFIX, S)                                                              \
+  PREFIX template void transform_symmetric<S>(const PhiT<S>&, const Mat6<S>&, Mat6<S>&, bool);   \
   PREFIX template S riccati_step<S>(const ModelT<S>&, const StateT<S>&, const WorkspaceT<S>&,    \
                                     int, ArticulatedT<S>&, CompositeTraceT<S>&);                 \
-  PREFIX template void articulated_inertias<S>(const ModelT<S>&, const StateT<S>&,               \
-                                               const WorkspaceT<S>&, ArticulatedT<S>&);          \
   PREFIX template struct ForwardDynamicsT<S>;                                                    \
   PREFIX template void forward_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
                                            const ExternalForces<S>&, WorkspaceT<S>&,             \
@@ -81,15 +90,23 @@
                                                     const VecX<S>&, WorkspaceT<S>&,              \
                                                     ForwardDynamicsT<S>&, VecX<S>&);             \
   PREFIX template void kinetic_gradient<S>(const ModelT<S>&, const StateT<S>&, WorkspaceT<S>&,   \
-                                           VecX<S>&, VecX<S>&);                                  \
-  PREFIX template struct InnovationsOperatorsT<S>;                                               \
+                                           VecX<S>&, VecX<S>&);
+#define SOA_TEMPLATES_MINV(PREFIX, S)                                                            \
   PREFIX template struct MassMatrixInverseT<S>;                                                  \
   PREFIX template void mass_matrix_inverse<S>(const ModelT<S>&, const StateT<S>&,                \
                                               const WorkspaceT<S>&, MassMatrixInverseT<S>&,      \
-                                              MatX<S>&);                                         \
+                                              MatX<S>&);
+#define SOA_TEMPLATES_SIM(PREFIX, S)                                                             \
   PREFIX template void retract<S>(const ModelT<S>&, const VecX<S>&, const VecX<S>&, VecX<S>&);   \
   PREFIX template class ChainSystemT<S>;                                                         \
   PREFIX template class StepperT<S>;
+#define SOA_TEMPLATES(PREFIX, S) \
+  SOA_TEMPLATES_CORE(PREFIX, S)  \
+  SOA_TEMPLATES_DENSE(PREFIX, S) \
+  SOA_TEMPLATES_ID(PREFIX, S)    \
+  SOA_TEMPLATES_FD(PREFIX, S)    \
+  SOA_TEMPLATES_MINV(PREFIX, S)  \
+  SOA_TEMPLATES_SIM(PREFIX, S)
 // clang-format on
 
 #ifndef SOA_INSTANTIATING

@@ -525,7 +525,8 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   const char* calls[kQuantities] = {
       "ours `soa::inverse_dynamics`; KDL `ChainIdSolver_RNE::CartToJnt`; MuJoCo "
       "`mj_kinematics`, `mj_comPos`, `mj_comVel`, `mj_rne` (with acceleration).",
-      "ours `soa::update_phi` + `soa::mass_matrix_inertial`; KDL `ChainDynParam::JntToMass`; MuJoCo "
+      "ours `soa::update_phi` + `soa::mass_matrix_inertial`; KDL `ChainDynParam::JntToMass`; "
+      "MuJoCo "
       "`mj_kinematics`, `mj_comPos`, `mj_crb`, `mj_fullM` (dense, as the others give it).",
       "ours `soa::forward_dynamics` (articulated bodies, O(N)); KDL "
       "`ChainHdSolver_Vereshchagin::CartToJnt` with no constraint (O(N)); MuJoCo `mj_kinematics`, "

@@ -17,6 +17,74 @@ namespace soa {
 template <class S>
 using HingeMatrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 
+namespace detail {
+
+/// The coordinate axis \f$i\f$ a rotation \f$R\f$ turns about, when it is exactly one (row
+/// and column \f$i\f$ of \f$R\f$ are \f$e_i\f$, as joint_phi() makes them for a revolute
+/// hinge about a coordinate axis with an identity placement rotation); -1 otherwise.
+template <class S>
+EIGEN_ALWAYS_INLINE int plane_rotation_axis(const Mat3<S>& R) {
+  for (int i = 0; i < 3; ++i) {
+    const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
+    if (R(i, i) == S(1) && R(j, i) == S(0) && R(m, i) == S(0) && R(i, j) == S(0) && R(i, m) == S(0))
+      return i;
+  }
+  return -1;
+}
+
+/// The coordinate axis \f$\pm e_i\f$ of a one-degree-of-freedom hinge (its \f$i\f$), when its
+/// axis is exactly one; -1 otherwise.
+template <class S>
+EIGEN_ALWAYS_INLINE int coordinate_axis(const HingeT<S>& h) {
+  const Vec3<S>& a = h.axis;
+  for (int i = 0; i < 3; ++i) {
+    const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
+    if ((a[i] == S(1) || a[i] == S(-1)) && a[j] == S(0) && a[m] == S(0)) return i;
+  }
+  return -1;
+}
+
+/// \f$R\, X\, R^*\f$ for a 3x3 block \p X and a rotation \f$R\f$ about the coordinate axis
+/// \f$I\f$: only rows and columns \f$J, K\f$ (the plane of the rotation) mix; \f$Y = RX\f$,
+/// then \f$Z = Y R^*\f$, with \f$R\f$'s four plane entries. \p symmetric: \f$X\f$ is, and so
+/// is \f$Z\f$ (its lower triangle formed and mirrored): 27 flops instead of 75; a general
+/// block 36 instead of 90.
+template <int I, class S>
+EIGEN_ALWAYS_INLINE Mat3<S> plane_rotate(const Mat3<S>& R, const Mat3<S>& X, bool symmetric) {
+  constexpr int J = I == 2 ? 0 : I + 1, K = J == 2 ? 0 : J + 1;
+  const S a = R(J, J), b = R(J, K), c = R(K, J), d = R(K, K);
+  Mat3<S> Z;
+  // Y = R X, rows J and K
+  const S yJI = a * X(J, I) + b * X(K, I), yKI = c * X(J, I) + d * X(K, I);
+  const S yJJ = a * X(J, J) + b * X(K, J), yKJ = c * X(J, J) + d * X(K, J);
+  const S yJK = a * X(J, K) + b * X(K, K), yKK = c * X(J, K) + d * X(K, K);
+  Z(I, I) = X(I, I);
+  Z(J, I) = yJI;
+  Z(K, I) = yKI;
+  Z(J, J) = a * yJJ + b * yJK;
+  Z(K, J) = a * yKJ + b * yKK;
+  Z(K, K) = c * yKJ + d * yKK;
+  if (symmetric) {
+    Z(I, J) = yJI, Z(I, K) = yKI, Z(J, K) = Z(K, J);
+  } else {
+    Z(I, J) = a * X(I, J) + b * X(I, K);
+    Z(I, K) = c * X(I, J) + d * X(I, K);
+    Z(J, K) = c * yJJ + d * yJK;
+  }
+  return Z;
+}
+
+/// The three blocks of \f$P\f$ rotated about the coordinate axis \f$I\f$ (plane_rotate()).
+template <int I, class S>
+EIGEN_ALWAYS_INLINE void plane_rotate_blocks(const Mat3<S>& R, const Mat6<S>& P, Mat3<S>& A,
+                                             Mat3<S>& B, Mat3<S>& C) {
+  A = plane_rotate<I>(R, Mat3<S>(P.template topLeftCorner<3, 3>()), true);
+  B = plane_rotate<I>(R, Mat3<S>(P.template topRightCorner<3, 3>()), false);
+  C = plane_rotate<I>(R, Mat3<S>(P.template bottomRightCorner<3, 3>()), true);
+}
+
+}  // namespace detail
+
 /// \f$\phi(x,y)\, P\, \phi^*(x,y)\f$ for a symmetric 6x6 \f$P\f$ (an articulated inertia),
 /// from \f$(R, l)\f$ without the 6x6 \f$\phi\f$: rotate the blocks, then shift by
 /// \f$L = \tilde l\f$: with \f$P' = \begin{pmatrix} A & B \\ B^* & C\end{pmatrix}\f$,
@@ -24,23 +92,35 @@ using HingeMatrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 ///     C \end{pmatrix}, \quad L^* = -L. \f]
 /// With \f$K = L B^*\f$ and \f$Q = L C\f$ the top left block is \f$A + K + K^* + L Q^*\f$
 /// (\f$B L = -K^*\f$, \f$L C L^* = L Q^*\f$): every product with \f$L\f$ is a cross product
-/// with \f$l\f$ of a column, and the symmetric blocks are filled from one triangle.
-/// Writes \p out, which must not be \p P.
+/// with \f$l\f$ of a column, and the symmetric blocks are filled from one triangle. A
+/// rotation about a coordinate axis (detail::plane_rotation_axis()) rotates the blocks in
+/// its plane only (detail::plane_rotate(), the same products less those with exact zeros
+/// and ones) unless \p fast_path is false. Writes \p out, which must not be \p P.
 template <class S>
-void transform_symmetric(const PhiT<S>& phi, const Mat6<S>& P, Mat6<S>& out) {
+void transform_symmetric(const PhiT<S>& phi, const Mat6<S>& P, Mat6<S>& out,
+                         bool fast_path = true) {
   const Mat3<S>& R = phi.R();
   const Vec3<S>& l = phi.l();
-  const Mat3<S> RA = R * P.template topLeftCorner<3, 3>();
-  const Mat3<S> RC = R * P.template bottomRightCorner<3, 3>();
-  const Mat3<S> B = R * P.template topRightCorner<3, 3>() * R.transpose();
-  Mat3<S> A, C, K, Q;
-  for (int j = 0; j < 3; ++j)
-    for (int i = j; i < 3; ++i) {
-      A(i, j) = RA.row(i).dot(R.row(j));
-      C(i, j) = RC.row(i).dot(R.row(j));
-    }
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < j; ++i) A(i, j) = A(j, i), C(i, j) = C(j, i);
+  Mat3<S> A, B, C, K, Q;
+  const int axis = fast_path ? detail::plane_rotation_axis(R) : -1;
+  if (axis == 0) {
+    detail::plane_rotate_blocks<0>(R, P, A, B, C);
+  } else if (axis == 1) {
+    detail::plane_rotate_blocks<1>(R, P, A, B, C);
+  } else if (axis == 2) {
+    detail::plane_rotate_blocks<2>(R, P, A, B, C);
+  } else {
+    const Mat3<S> RA = R * P.template topLeftCorner<3, 3>();
+    const Mat3<S> RC = R * P.template bottomRightCorner<3, 3>();
+    B = R * P.template topRightCorner<3, 3>() * R.transpose();
+    for (int j = 0; j < 3; ++j)
+      for (int i = j; i < 3; ++i) {
+        A(i, j) = RA.row(i).dot(R.row(j));
+        C(i, j) = RC.row(i).dot(R.row(j));
+      }
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < j; ++i) A(i, j) = A(j, i), C(i, j) = C(j, i);
+  }
   for (int j = 0; j < 3; ++j) {
     K.col(j) = l.cross(B.row(j).transpose());  // K = L B^*
     Q.col(j) = l.cross(C.col(j));              // Q = L C
@@ -170,6 +250,19 @@ void add_inertia(const SpatialInertiaT<S>& M, Mat6<S>& P) {
   P.template bottomRightCorner<3, 3>().diagonal().array() += M.mass();
 }
 
+namespace detail {
+
+/// The eigenvalues of a symmetric \f$n_k \times n_k\f$ hinge matrix, out of line: only the
+/// multi-degree-of-freedom hinges and the singularity check need them, and the Riccati step
+/// stays small.
+template <class S>
+EIGEN_DONT_INLINE Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1> hinge_eigenvalues(
+    const HingeMatrix<S>& D) {
+  return Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(D, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+}  // namespace detail
+
 /// The ratio \f$\lambda_{\min}(D(k)) / \lambda_{\max}(H(k) Q(k) H^*(k))\f$ of
 /// singular_D_threshold(), from \p art after step k of the Riccati recursion (0 when
 /// \f$H Q H^* = 0\f$); \p d_min is \f$\lambda_{\min}(D(k))\f$.
@@ -181,9 +274,7 @@ S singular_D_ratio(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& 
   add_inertia(B.M, Q);
   const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
   const HingeMatrix<S> DQ = Hs.transpose() * Q * Hs;
-  const S q_max = Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(DQ, Eigen::EigenvaluesOnly)
-                      .eigenvalues()
-                      .maxCoeff();
+  const S q_max = detail::hinge_eigenvalues(DQ).maxCoeff();
   return q_max > S(0) ? d_min / q_max : S(0);
 }
 
@@ -191,10 +282,7 @@ S singular_D_ratio(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& 
 template <class S>
 S singular_D_ratio(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
                    const ArticulatedT<S>& art, int k) {
-  const S d_min =
-      Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[art.slot(k)], Eigen::EigenvaluesOnly)
-          .eigenvalues()
-          .minCoeff();
+  const S d_min = detail::hinge_eigenvalues(art.D[art.slot(k)]).minCoeff();
   return singular_D_ratio(m, x, ws, art, k, d_min);
 }
 
@@ -213,7 +301,7 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
   const int i = art.slot(k);
   Mat6<S>& P = art.P[i];
   if (k > 1)
-    transform_symmetric(ws.phi[k - 2], art.P_plus[art.slot(k - 1)], P);
+    transform_symmetric(ws.phi[k - 2], art.P_plus[art.slot(k - 1)], P, m.fast_paths);
   else
     P.setZero();
   add_inertia(B.M, P);
@@ -221,24 +309,39 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
   const int nv = B.hinge.nv();
   S d_min;
   if (nv == 1) {
+    // P H*(k) as a column of P for a hinge about a coordinate axis, else P s; then the
+    // rank-one P+ = P - G (P s)^*.
     const Vec6<S> s = one_dof_map(B.hinge);
-    const Vec6<S> Ps = B.hinge.type == HingeType::Revolute
-                           ? Vec6<S>(P.template leftCols<3>() * B.hinge.axis)
-                           : Vec6<S>(P * s);
-    const S d = s.dot(Ps);
+    const int ax = m.fast_paths ? detail::coordinate_axis(B.hinge) : -1;
+    Vec6<S> Ps;
+    S d;
+    if (ax >= 0) {
+      const int c = B.hinge.type == HingeType::Prismatic ? ax + 3 : ax;
+      const S sign = s[c];
+      Ps = sign * P.col(c);
+      d = sign * Ps[c];
+      if (B.hinge.type == HingeType::Helical) {
+        const S hp = B.hinge.pitch * sign;
+        Ps += hp * P.col(ax + 3);
+        d = s.dot(Ps);
+      }
+    } else {
+      Ps = B.hinge.type == HingeType::Revolute ? Vec6<S>(P.template leftCols<3>() * B.hinge.axis)
+                                               : Vec6<S>(P * s);
+      d = s.dot(Ps);
+    }
     d_min = d;
     art.D[i].setConstant(1, 1, d);
     const S d_inv = S(1) / d;
     art.D_inv[i].setConstant(1, 1, d_inv);
-    art.G[i] = Ps * d_inv;
-    art.P_plus[i] = P - art.G[i] * Ps.transpose();
+    const Vec6<S> g = Ps * d_inv;
+    art.G[i] = g;
+    art.P_plus[i].noalias() = P - g * Ps.transpose();
   } else {
     const JointMap<S> Hs = B.hinge.H_star(th);
     const JointMap<S> PHs = P * Hs;
     art.D[i] = Hs.transpose() * PHs;
-    d_min = Eigen::SelfAdjointEigenSolver<HingeMatrix<S>>(art.D[i], Eigen::EigenvaluesOnly)
-                .eigenvalues()
-                .minCoeff();
+    d_min = detail::hinge_eigenvalues(art.D[i]).minCoeff();
     art.D_inv[i] = art.D[i].inverse();
     art.G[i] = PHs * art.D_inv[i];
     art.P_plus[i] = P - art.G[i] * PHs.transpose();

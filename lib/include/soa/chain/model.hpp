@@ -50,6 +50,10 @@ class ModelT {
   /// \f$\alpha(n+1) = [0; -g]\f$. Zero means no gravity pass at all.
   Vec3<S> gravity = Vec3<S>::Zero();
   bool has_gravity() const { return gravity.squaredNorm() > S(0); }
+  /// The recursions' fast paths for hinges about a coordinate axis (a column of \f$P\f$ for
+  /// \f$P H^*\f$, plane rotations of the inertias): on by default; off, every body takes
+  /// the general path, against which the tests check them.
+  bool fast_paths = true;
   /// True when some hinge has a spring or a damper.
   bool has_springs() const {
     for (const auto& b : bodies_)
