@@ -309,22 +309,17 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
   const int nv = B.hinge.nv();
   S d_min;
   if (nv == 1) {
-    // P H*(k) as a column of P for a hinge about a coordinate axis, else P s; then the
-    // rank-one P+ = P - G (P s)^*.
+    // P H*(k) as a column of P for a revolute or prismatic hinge about a coordinate axis
+    // (+-e_i), else P s; then the rank-one P+ = P - G (P s)^*.
     const Vec6<S> s = one_dof_map(B.hinge);
-    const int ax = m.fast_paths ? detail::coordinate_axis(B.hinge) : -1;
+    const int ax =
+        m.fast_paths && B.hinge.type != HingeType::Helical ? detail::coordinate_axis(B.hinge) : -1;
     Vec6<S> Ps;
     S d;
     if (ax >= 0) {
       const int c = B.hinge.type == HingeType::Prismatic ? ax + 3 : ax;
-      const S sign = s[c];
-      Ps = sign * P.col(c);
-      d = sign * Ps[c];
-      if (B.hinge.type == HingeType::Helical) {
-        const S hp = B.hinge.pitch * sign;
-        Ps += hp * P.col(ax + 3);
-        d = s.dot(Ps);
-      }
+      Ps = s[c] * P.col(c);
+      d = s[c] * Ps[c];
     } else {
       Ps = B.hinge.type == HingeType::Revolute ? Vec6<S>(P.template leftCols<3>() * B.hinge.axis)
                                                : Vec6<S>(P * s);

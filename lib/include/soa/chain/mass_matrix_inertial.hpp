@@ -67,27 +67,30 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
   const int n = m.n(), nv = m.nv();
   Mass.resize(nv, nv);
   composite_inertias(m, ws, w.R);
-  // Base to tip: the pose (R_k, p_k) of O_k, then the rows s and f of hinge k and its
-  // diagonal block.
-  Mat3<S> Rw = Mat3<S>::Identity();
-  Vec3<S> pw = Vec3<S>::Zero();
+  // Base to tip: the pose (R_k, p_k) of O_k (slides 25-27), then for each column
+  // [w; v] of H*(k) and its force [N; F] = R(k) [w; v] at O_k the rows s and f, and the
+  // diagonal block H(k) R(k) H*(k).
+  PoseT<S> T;  // {}^I T_{O_k}
+  auto put_rows = [&](int r, const Vec3<S>& w_k, const Vec3<S>& v_k, const Vec3<S>& N,
+                      const Vec3<S>& F) {
+    const Mat3<S>& R = T.R();
+    const Vec3<S>& p = T.l();
+    const Vec3<S> a = R * w_k, v = R * v_k + p.cross(a), Fw = R * F, Nw = R * N + p.cross(Fw);
+    for (int i = 0; i < 3; ++i) {
+      w.s(r, i) = a[i], w.s(r, 3 + i) = v[i];
+      w.f(r, i) = Nw[i], w.f(r, 3 + i) = Fw[i];
+    }
+  };
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
-    const PhiT<S>& phi = ws.phi[k - 1];
     const SpatialInertiaT<S>& Rk = w.R[k - 1];
-    pw += Rw * phi.l();
-    Rw = (Rw * phi.R()).eval();
+    T = T * ws.phi[k - 1].pose();
     const int o = B.v_offset;
-    if (B.hinge.type == HingeType::Revolute) {
-      // [N; F] = R(k) [a; 0] = [J a; a x h]
+    if (B.hinge.type == HingeType::Revolute) {  // [N; F] = R(k) [a; 0] = [J a; a x h]
       const Vec3<S>& a = B.hinge.axis;
-      const Vec3<S> N = Rk.J() * a, F = a.cross(Rk.h());
+      const Vec3<S> N = Rk.J() * a;
       Mass(o, o) = a.dot(N);
-      const Vec3<S> aw = Rw * a, Fw = Rw * F, Nw = Rw * N + pw.cross(Fw), vw = pw.cross(aw);
-      for (int i = 0; i < 3; ++i) {
-        w.s(o, i) = aw[i], w.s(o, 3 + i) = vw[i];
-        w.f(o, i) = Nw[i], w.f(o, 3 + i) = Fw[i];
-      }
+      put_rows(o, a, Vec3<S>::Zero(), N, a.cross(Rk.h()));
       continue;
     }
     const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
@@ -95,13 +98,8 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
       const MomentumT<S> hc = Rk * VelocityT<S>(Vec6<S>(Hs.col(c)));
       for (int r = 0; r <= c; ++r)
         Mass(o + r, o + c) = Mass(o + c, o + r) = Hs.col(r).dot(hc.vector());
-      const Vec3<S> aw = Rw * Hs.col(c).template head<3>();
-      const Vec3<S> vw = Rw * Hs.col(c).template tail<3>() + pw.cross(aw);
-      const Vec3<S> Fw = Rw * hc.linear(), Nw = Rw * hc.angular() + pw.cross(Fw);
-      for (int i = 0; i < 3; ++i) {
-        w.s(o + c, i) = aw[i], w.s(o + c, 3 + i) = vw[i];
-        w.f(o + c, i) = Nw[i], w.f(o + c, 3 + i) = Fw[i];
-      }
+      put_rows(o + c, Hs.col(c).template head<3>(), Hs.col(c).template tail<3>(), hc.angular(),
+               hc.linear());
     }
   }
   // The columns of hinge k: below its block M(i,k) = s^*(i) f(k) for the inboard hinges,
