@@ -5,7 +5,8 @@
 #                   LESSON=4 or EX=4.2 for one lesson or one exercise, HINT=4.7 for the
 #                   exercise's next hint
 #   make docs       Doxygen course notes (offline math, gnuplot figures) in build/docs/html
-#   make bench      Google Benchmark results and the soa command's scale (cli_scale) in build/bench/
+#   make bench      Google Benchmark results and the soa command's scale (cli_scale) in build/bench/,
+#                   the speed targets in both configurations judged in build/bench/speed.md
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug (in
@@ -124,8 +125,19 @@ stub-sums:
 docs: build
 	cmake --build $(BUILD_DIR) --target docs
 
+# Then the speed targets of issue 17 in both configurations: this build (SOA_NATIVE, on by
+# default) and build/portable (SOA_NATIVE=OFF, double only), judged in build/bench/speed.md.
+PORT_DIR := build/portable
 bench: configure
+	@rm -f build/bench/targets_*.json build/bench/speed.md
+	@cmake -S . -B $(PORT_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOA_NATIVE=OFF \
+	  -DSOA_PRECISIONS=double -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(PORT_DIR).cmake.log \
+	  || { cat $(PORT_DIR).cmake.log; exit 1; }
+	cmake --build $(PORT_DIR) -j $(JOBS) --target chain_bench forward_bench
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target bench
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target bench_targets
+	cmake --build $(PORT_DIR) --target bench_targets
+	cmake --build $(BUILD_DIR) --target bench_report
 
 # The library side by side with Orocos KDL and MuJoCo (tests/bench/compare/): its own build,
 # build/compare (double and long double only, SOA_COMPARE=ON), then the program writes
