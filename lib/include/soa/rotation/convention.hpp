@@ -41,7 +41,8 @@ template <class S>
 S sinc(S x) {
   using std::abs;
   using std::sin;
-  return abs(x) < std::sqrt(std::sqrt(eps<S>())) ? S(1) - x * x / S(6) : sin(x) / x;
+  using std::sqrt;
+  return abs(x) < sqrt(sqrt(eps<S>())) ? S(1) - x * x / S(6) : sin(x) / x;
 }
 
 /// Conversion between any two attitude representations through the rotation matrix, the hub

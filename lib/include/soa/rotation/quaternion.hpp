@@ -27,16 +27,18 @@ class UnitQuaternionT {
   UnitQuaternionT(const Vec3<S>& q, S q0) : q_(q), q0_(q0) {
     require_finite(q, "UnitQuaternion: vector part");
     require_finite_scalar(q0, "UnitQuaternion: scalar part");
+    using std::abs;  // std's for the standard precisions, by lookup for other scalars
+    using std::sqrt;
     S n2 = q.squaredNorm() + q0 * q0;
     if (!(n2 >= std::numeric_limits<S>::min() / eps<S>() && n2 <= std::numeric_limits<S>::max())) {
       // The sum of squares under- or overflows: scale by the largest coefficient first.
-      const S s = std::max(q.cwiseAbs().maxCoeff(), std::abs(q0));
+      const S s = std::max(q.cwiseAbs().maxCoeff(), abs(q0));
       if (!(s > S(0))) throw Error("UnitQuaternion: zero quaternion names no rotation");
       q_ /= s;
       q0_ /= s;
       n2 = q_.squaredNorm() + q0_ * q0_;
     }
-    const S norm = std::sqrt(n2);
+    const S norm = sqrt(n2);
     q_ /= norm;
     q0_ /= norm;
   }
@@ -61,8 +63,9 @@ class UnitQuaternionT {
   /// quaternion is chosen with \f$q_0 \ge 0\f$; \f$\theta \to 0\f$ handled by sinc()).
   Vec3<S> log() const {
     // |q| = sin(θ/2), so θ n = 2 (θ/2) q / |q| = 2 q / sinc(θ/2).
+    using std::atan2;
     const S sign = q0_ < S(0) ? S(-1) : S(1);
-    const S half = std::atan2(q_.norm(), sign * q0_);
+    const S half = atan2(q_.norm(), sign * q0_);
     return sign * S(2) * q_ / sinc(half);
   }
 
