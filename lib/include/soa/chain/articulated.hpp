@@ -37,11 +37,9 @@ EIGEN_ALWAYS_INLINE int plane_rotation_axis(const Mat3<S>& R) {
 template <class S>
 EIGEN_ALWAYS_INLINE int coordinate_axis(const HingeT<S>& h) {
   const Vec3<S>& a = h.axis;
-  for (int i = 0; i < 3; ++i) {
-    const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
-    if ((a[i] == S(1) || a[i] == S(-1)) && a[j] == S(0) && a[m] == S(0)) return i;
-  }
-  return -1;
+  const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;  // the first non-zero component
+  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
+  return a[j] == S(0) && a[m] == S(0) && (a[i] == S(1) || a[i] == S(-1)) ? i : -1;
 }
 
 /// \f$R\, X\, R^*\f$ for a 3x3 block \p X and a rotation \f$R\f$ about the coordinate axis
@@ -240,7 +238,7 @@ struct CompositeTraceT {
 /// \f$P \mathrel{+}= M\f$ for a spatial inertia \f$(m, h, J)\f$ (slide 68):
 /// \f$M = \begin{pmatrix} J & \tilde h \\ -\tilde h & m I \end{pmatrix}\f$.
 template <class S>
-void add_inertia(const SpatialInertiaT<S>& M, Mat6<S>& P) {
+EIGEN_ALWAYS_INLINE void add_inertia(const SpatialInertiaT<S>& M, Mat6<S>& P) {
   const Vec3<S>& h = M.h();
   P.template topLeftCorner<3, 3>() += M.J();
   P(0, 4) -= h[2], P(0, 5) += h[1], P(1, 3) += h[2], P(1, 5) -= h[0], P(2, 3) -= h[1],

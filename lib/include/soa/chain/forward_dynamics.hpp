@@ -158,24 +158,30 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     // epsilon(k) = T(k) + spring force - H(k) z(k)
     const int nv = B.hinge.nv();
     S e[6], Hz[6];
-    for (int i = 0; i < nv; ++i) e[i] = T[B.v_offset + i];
+    if (nv == 1)
+      e[0] = T[B.v_offset];
+    else
+      for (int i = 0; i < nv; ++i) e[i] = T[B.v_offset + i];
     if (B.stiffness != S(0) || B.damping != S(0))
       add_spring_force(B, th, x.beta.data() + B.v_offset, e);
     if (B.hinge.type == HingeType::Revolute)
       Hz[0] = B.hinge.axis.dot(N);
     else
       B.hinge.H_times(th, z, Hz);
-    for (int i = 0; i < nv; ++i) e[i] -= Hz[i];
+    if (nv == 1)
+      e[0] -= Hz[0];
+    else
+      for (int i = 0; i < nv; ++i) e[i] -= Hz[i];
     // nu(k) = D^{-1}(k) epsilon(k), z+(k) = z(k) + G(k) epsilon(k)
     const JointMap<S>& G = art.G[slot];
-    HingeVector<S> nu_k;
+    S nu_k[6];
     if (nv == 1) {
-      nu_k.setConstant(1, art.D_inv[slot](0, 0) * e[0]);
+      nu_k[0] = art.D_inv[slot](0, 0) * e[0];
       N += G.col(0).template head<3>() * e[0];
       F += G.col(0).template tail<3>() * e[0];
     } else {
       const Eigen::Map<const HingeVector<S>> eps(e, nv);
-      nu_k = art.D_inv[slot] * eps;
+      Eigen::Map<HingeVector<S>>(nu_k, nv).noalias() = art.D_inv[slot] * eps;
       const Vec6<S> Ge = G * eps;
       N += Ge.template head<3>();
       F += Ge.template tail<3>();
@@ -186,7 +192,7 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
         Eigen::Map<Vec6<S>>(fd.G_packed.data() + 6 * (B.v_offset + i)) = G.col(i);
       }
     } else {
-      fd.nu[k - 1] = nu_k;
+      fd.nu[k - 1] = Eigen::Map<const HingeVector<S>>(nu_k, nv);
       fd.z_plus[k - 1] = ForceT<S>(N, F);
     }
     Np = N, Fp = F;
