@@ -338,8 +338,12 @@ int main(int argc, char** argv) {
   /// the hinge map of hinge i seen as a velocity at \f$\mathbb I\f$, and the force column of
   /// hinge j moved to \f$\mathbb I\f$, both in inertial coordinates. Forming every \f$s\f$
   /// and \f$f\f$ is O(N) (the poses of lesson 3 on the way); each entry is then one
-  /// independent 6-term dot product, and a column of \f$\mathcal M\f$ is one vectorized loop
-  /// over the rows (soa::mass_matrix_inertial). The price is in the rounding: a moment
+  /// independent 6-term dot product (soa::mass_matrix_inertial): in a long chain a column of
+  /// \f$\mathcal M\f$ is one vectorized loop over the rows, in a short one (up to 32
+  /// degrees of freedom, where a loop's set-up costs more than its work) the lower triangle
+  /// is formed entry by entry and mirrored. A hinge about a coordinate axis lets the poses,
+  /// the composite inertias and its columns skip the products with the exact zeros and ones
+  /// of its rotation and axis (`Model::fast_paths`). The price is in the rounding: a moment
   /// about \f$\mathbb I\f$ is of size \f$|p|\,|F|\f$, so an entry of a body far from
   /// \f$\mathbb I\f$ carries an error of about \f$\varepsilon\,|s(i)|\,|f(j)|\f$, where the
   /// walk's stays relative to the entry; the property test bounds the difference by both.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "soa/chain/composite.hpp"
+#include "soa/detail/plane.hpp"
 
 namespace soa {
 
@@ -19,57 +20,11 @@ using HingeMatrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 
 namespace detail {
 
-/// The coordinate axis \f$i\f$ a rotation \f$R\f$ turns about, when it is exactly one (row
-/// and column \f$i\f$ of \f$R\f$ are \f$e_i\f$, as joint_phi() makes them for a revolute
-/// hinge about a coordinate axis with an identity placement rotation); -1 otherwise.
-template <class S>
-EIGEN_ALWAYS_INLINE int plane_rotation_axis(const Mat3<S>& R) {
-  for (int i = 0; i < 3; ++i) {
-    const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
-    if (R(i, i) == S(1) && R(j, i) == S(0) && R(m, i) == S(0) && R(i, j) == S(0) && R(i, m) == S(0))
-      return i;
-  }
-  return -1;
-}
-
 /// The coordinate axis \f$\pm e_i\f$ of a one-degree-of-freedom hinge (its \f$i\f$), when its
 /// axis is exactly one; -1 otherwise.
 template <class S>
 EIGEN_ALWAYS_INLINE int coordinate_axis(const HingeT<S>& h) {
-  const Vec3<S>& a = h.axis;
-  const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;  // the first non-zero component
-  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
-  return a[j] == S(0) && a[m] == S(0) && (a[i] == S(1) || a[i] == S(-1)) ? i : -1;
-}
-
-/// \f$R\, X\, R^*\f$ for a 3x3 block \p X and a rotation \f$R\f$ about the coordinate axis
-/// \f$I\f$: only rows and columns \f$J, K\f$ (the plane of the rotation) mix; \f$Y = RX\f$,
-/// then \f$Z = Y R^*\f$, with \f$R\f$'s four plane entries. \p symmetric: \f$X\f$ is, and so
-/// is \f$Z\f$ (its lower triangle formed and mirrored): 27 flops instead of 75; a general
-/// block 36 instead of 90.
-template <int I, class S>
-EIGEN_ALWAYS_INLINE Mat3<S> plane_rotate(const Mat3<S>& R, const Mat3<S>& X, bool symmetric) {
-  constexpr int J = I == 2 ? 0 : I + 1, K = J == 2 ? 0 : J + 1;
-  const S a = R(J, J), b = R(J, K), c = R(K, J), d = R(K, K);
-  Mat3<S> Z;
-  // Y = R X, rows J and K
-  const S yJI = a * X(J, I) + b * X(K, I), yKI = c * X(J, I) + d * X(K, I);
-  const S yJJ = a * X(J, J) + b * X(K, J), yKJ = c * X(J, J) + d * X(K, J);
-  const S yJK = a * X(J, K) + b * X(K, K), yKK = c * X(J, K) + d * X(K, K);
-  Z(I, I) = X(I, I);
-  Z(J, I) = yJI;
-  Z(K, I) = yKI;
-  Z(J, J) = a * yJJ + b * yJK;
-  Z(K, J) = a * yKJ + b * yKK;
-  Z(K, K) = c * yKJ + d * yKK;
-  if (symmetric) {
-    Z(I, J) = yJI, Z(I, K) = yKI, Z(J, K) = Z(K, J);
-  } else {
-    Z(I, J) = a * X(I, J) + b * X(I, K);
-    Z(I, K) = c * X(I, J) + d * X(I, K);
-    Z(J, K) = c * yJJ + d * yJK;
-  }
-  return Z;
+  return coordinate_axis(h.axis);
 }
 
 /// The three blocks of \f$P\f$ rotated about the coordinate axis \f$I\f$ (plane_rotate()).

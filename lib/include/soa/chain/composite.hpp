@@ -13,12 +13,15 @@ namespace soa {
 /// base: \f[ R(k) = \phi(k,k-1)\, R(k-1)\, \phi^*(k,k-1) + M(k), \qquad R(0) = 0 , \f]
 /// each the inertia, about \f$O_k\f$, of bodies 1..k welded together: a rigid body inertia,
 /// so it is kept as \f$(m, mp, J)\f$. Operator form: \f$R = \mathcal{E}_\phi R
-/// \mathcal{E}_\phi^* + M\f$. Needs update_phi(); \p R must have n entries.
+/// \mathcal{E}_\phi^* + M\f$. A \f$\phi(k,k-1)\f$ turning about a coordinate axis moves
+/// \f$R(k-1)\f$ in its plane (soa::transform()'s fast path, the general one to an ulp)
+/// unless Model::fast_paths is off. Needs update_phi(); \p R must have n entries.
 template <class S>
 void composite_inertias(const ModelT<S>& m, const WorkspaceT<S>& ws,
                         std::vector<SpatialInertiaT<S>>& R) {
   for (int k = 1; k <= m.n(); ++k)
-    R[k - 1] = k == 1 ? m.body(1).M : transform(ws.phi[k - 2], R[k - 2]) + m.body(k).M;
+    R[k - 1] =
+        k == 1 ? m.body(1).M : transform(ws.phi[k - 2], R[k - 2], m.fast_paths) + m.body(k).M;
 }
 
 /// The mass matrix from the composite inertias (lesson 5), \f$O(N^2)\f$:

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "soa/chain/composite.hpp"
+#include "soa/detail/plane.hpp"
 
 namespace soa {
 
@@ -14,10 +15,14 @@ namespace soa {
 /// of the six components is a contiguous array).
 template <class S>
 struct MassMatrixInertialT {
-  explicit MassMatrixInertialT(const ModelT<S>& m) : R(m.n()), s(m.nv(), 6), f(m.nv(), 6) {}
+  explicit MassMatrixInertialT(const ModelT<S>& m)
+      : R(m.n()), axis(m.n()), s(m.nv(), 6), f(m.nv(), 6) {}
   std::vector<SpatialInertiaT<S>> R;  ///< \f$R(k)\f$, the composite inertias
-  MatX<S> s;                          ///< row r: \f$s_r^*\f$ (motion at the inertial origin)
-  MatX<S> f;                          ///< row r: \f$f_r^*\f$ (force at the inertial origin)
+  /// entry k - 1: the coordinate axis \f$\phi(k+1,k)\f$ turns about, or -1
+  /// (detail::plane_rotation_axis(); -1 when Model::fast_paths is off)
+  std::vector<int> axis;
+  MatX<S> s;  ///< row r: \f$s_r^*\f$ (motion at the inertial origin)
+  MatX<S> f;  ///< row r: \f$f_r^*\f$ (force at the inertial origin)
 };
 using MassMatrixInertial = MassMatrixInertialT<double>;
 
@@ -36,6 +41,28 @@ EIGEN_ALWAYS_INLINE void rows_dot(const MatX<S>& X, Eigen::Index r0, Eigen::Inde
   const S c0 = c[0], c1 = c[1], c2 = c[2], c3 = c[3], c4 = c[4], c5 = c[5];
   for (Eigen::Index i = 0; i < len; ++i)
     y[i] = ((c0 * x0[i] + c1 * x1[i]) + (c2 * x2[i] + c3 * x3[i])) + (c4 * x4[i] + c5 * x5[i]);
+}
+
+/// Row \p r of \f$s\f$, \f$[a; v]\f$, and of \f$f\f$, \f$[N; F]\f$, in \p w.
+template <class S>
+EIGEN_ALWAYS_INLINE void put_rows(MassMatrixInertialT<S>& w, int r, const Vec3<S>& a,
+                                  const Vec3<S>& v, const Vec3<S>& N, const Vec3<S>& F) {
+  const Eigen::Index ld = w.s.rows();
+  S* const s = w.s.data() + r;
+  S* const f = w.f.data() + r;
+  for (int i = 0; i < 3; ++i) {
+    s[i * ld] = a[i], s[(3 + i) * ld] = v[i];
+    f[i * ld] = N[i], f[(3 + i) * ld] = F[i];
+  }
+}
+
+/// The dot product of row \p i of the column-major \p X (leading dimension \p ld) with
+/// \p c, summed as rows_dot() sums it.
+template <class S>
+EIGEN_ALWAYS_INLINE S row_dot(const S* X, Eigen::Index ld, Eigen::Index i, const S* c) {
+  const S* x = X + i;
+  return ((c[0] * x[0] + c[1] * x[ld]) + (c[2] * x[2 * ld] + c[3] * x[3 * ld])) +
+         (c[4] * x[4 * ld] + c[5] * x[5 * ld]);
 }
 
 }  // namespace detail
@@ -59,38 +86,64 @@ EIGEN_ALWAYS_INLINE void rows_dot(const MatX<S>& X, Eigen::Index r0, Eigen::Inde
 /// Rounding: a moment about \f$\mathbb I\f$ is of size \f$|p|\,|F|\f$, so an entry far out
 /// on a long chain carries an error of about \f$\varepsilon\,|p|\,|f|\f$ where lesson 5's
 /// carries \f$\varepsilon\,|f|\f$ times the links between i and j; both are tested against
-/// each other. Both triangles are computed, each column as a contiguous vectorized loop (no
-/// strided transpose). Needs update_phi().
+/// each other. A long matrix is computed in both triangles, each column a contiguous
+/// vectorized loop (no strided transpose); a short one (at most 32 degrees of freedom) in its
+/// lower triangle, mirrored: the same products summed in the same order either way, so
+/// \f$\mathcal M\f$ is exactly symmetric. With Model::fast_paths a \f$\phi\f$ turning about a
+/// coordinate axis composes the poses and moves the composite inertias in its plane
+/// (detail::plane_times(), soa::transform()), and a revolute hinge about \f$\pm e_i\f$ takes
+/// its columns of the pose and of \f$J\f$ (issue 17's fast paths). Needs update_phi().
 template <class S>
 void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
                           MassMatrixInertialT<S>& w, MatX<S>& Mass) {
   const int n = m.n(), nv = m.nv();
+  const bool fast = m.fast_paths;
   Mass.resize(nv, nv);
-  composite_inertias(m, ws, w.R);
-  // Base to tip: the pose (R_k, p_k) of O_k (slides 25-27), then for each column
-  // [w; v] of H*(k) and its force [N; F] = R(k) [w; v] at O_k the rows s and f, and the
-  // diagonal block H(k) R(k) H*(k).
-  PoseT<S> T;  // {}^I T_{O_k}
-  auto put_rows = [&](int r, const Vec3<S>& w_k, const Vec3<S>& v_k, const Vec3<S>& N,
-                      const Vec3<S>& F) {
-    const Mat3<S>& R = T.R();
-    const Vec3<S>& p = T.l();
-    const Vec3<S> a = R * w_k, v = R * v_k + p.cross(a), Fw = R * F, Nw = R * N + p.cross(Fw);
-    for (int i = 0; i < 3; ++i) {
-      w.s(r, i) = a[i], w.s(r, 3 + i) = v[i];
-      w.f(r, i) = Nw[i], w.f(r, 3 + i) = Fw[i];
-    }
-  };
+  // composite_inertias(), keeping the plane axis of each phi for the poses below
+  for (int k = 1; k <= n; ++k) {
+    w.axis[k - 1] = fast ? detail::plane_rotation_axis(ws.phi[k - 1].R()) : -1;
+    w.R[k - 1] =
+        k == 1 ? m.body(1).M
+               : detail::transform_about(ws.phi[k - 2], w.R[k - 2], w.axis[k - 2]) + m.body(k).M;
+  }
+  // Base to tip: the pose (R, p) of O_k (slides 25-27), then for each column [w; v] of
+  // H*(k) and its force [N; F] = R(k) [w; v] at O_k the rows s = [a; v'] and f = [N'; F'],
+  // and the diagonal block H(k) R(k) H*(k).
+  Mat3<S> R = Mat3<S>::Identity();  // {}^I R_{O_k}
+  Vec3<S> p = Vec3<S>::Zero();      // {}^I l(I, O_k)
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
     const SpatialInertiaT<S>& Rk = w.R[k - 1];
-    T = T * ws.phi[k - 1].pose();
+    // {}^I T_{O_k} = {}^I T_{O_{k+1}} phi(k+1, k).pose(): p += R l, then R = R R_phi, in the
+    // plane of R_phi only when it turns about a coordinate axis (detail::plane_times(), the
+    // general products less those with an exact 0 or 1: the same bits, or an ulp apart where
+    // Eigen's product fuses a multiply-add).
+    const PoseT<S>& Tk = ws.phi[k - 1].pose();
+    p += R * Tk.l();
+    if (!(detail::with_plane_axis(w.axis[k - 1], [&](auto I) {
+          R = detail::plane_times<decltype(I)::value>(R, Tk.R());
+        })))
+      R = R * Tk.R();
     const int o = B.v_offset;
     if (B.hinge.type == HingeType::Revolute) {  // [N; F] = R(k) [a; 0] = [J a; a x h]
       const Vec3<S>& a = B.hinge.axis;
-      const Vec3<S> N = Rk.J() * a;
+      // About +-e_i (sign g): a' = g R e_i, N = g J e_i, a x h has two entries, and
+      // M(k,k) = J_ii; each product left out has an exact 0 or 1 (the same bits up to the
+      // fused multiply-adds of Eigen's general products).
+      const bool axis_path =
+          fast && detail::with_plane_axis(detail::coordinate_axis(a), [&](auto I) {
+            constexpr int i = decltype(I)::value, j = i == 2 ? 0 : i + 1, l = j == 2 ? 0 : j + 1;
+            const S g = a[i];
+            const Vec3<S>& h = Rk.h();
+            const Vec3<S> aw = g * R.col(i), N = g * Rk.J().col(i);
+            const Vec3<S> Fw = R.col(j) * (-(g * h[l])) + R.col(l) * (g * h[j]);
+            Mass(o, o) = Rk.J()(i, i);
+            detail::put_rows<S>(w, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
+          });
+      if (axis_path) continue;
+      const Vec3<S> N = Rk.J() * a, aw = R * a, Fw = R * a.cross(Rk.h());
       Mass(o, o) = a.dot(N);
-      put_rows(o, a, Vec3<S>::Zero(), N, a.cross(Rk.h()));
+      detail::put_rows<S>(w, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
       continue;
     }
     const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
@@ -98,15 +151,36 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
       const MomentumT<S> hc = Rk * VelocityT<S>(Vec6<S>(Hs.col(c)));
       for (int r = 0; r <= c; ++r)
         Mass(o + r, o + c) = Mass(o + c, o + r) = Hs.col(r).dot(hc.vector());
-      put_rows(o + c, Hs.col(c).template head<3>(), Hs.col(c).template tail<3>(), hc.angular(),
-               hc.linear());
+      const Vec3<S> aw = R * Hs.col(c).template head<3>(), Fw = R * hc.linear();
+      detail::put_rows<S>(w, o + c, aw, R * Hs.col(c).template tail<3>() + p.cross(aw),
+                          R * hc.angular() + p.cross(Fw), Fw);
     }
   }
   // The columns of hinge k: below its block M(i,k) = s^*(i) f(k) for the inboard hinges,
-  // above it M(j,k) = M(k,j) = f^*(j) s(k) for the outboard ones; each a contiguous loop.
+  // above it M(j,k) = M(k,j) = f^*(j) s(k) for the outboard ones. A short matrix takes the
+  // lower triangle entry by entry and mirrors it (half the dot products; the vector loops'
+  // set-up dominates below kMirrorMax dofs); a long one computes both triangles, each column
+  // a contiguous vectorized loop (no strided transpose). The two give the same bits:
+  // M(j,k) and M(k,j) are the same six products summed in the same order.
+  constexpr int kMirrorMax = 32;
+  if (nv <= kMirrorMax) {
+    S* const M = Mass.data();
+    const S *const s = w.s.data(), *const f = w.f.data();
+    const Eigen::Index ld = nv;
+    for (int k = 1; k <= n; ++k) {  // hinge k's columns [o, below), tip first
+      const int o = m.body(k).v_offset, below = k < n ? m.body(k + 1).v_offset : nv;
+      for (int c = o; c < below; ++c) {
+        S fc[6];
+        for (int i = 0; i < 6; ++i) fc[i] = f[c + i * ld];
+        S* const col = M + c * ld;
+        for (int i = below; i < nv; ++i) M[c + i * ld] = col[i] = detail::row_dot(s, ld, i, fc);
+      }
+    }
+    return;
+  }
   for (int k = 1; k <= n; ++k) {
     const BodyT<S>& B = m.body(k);
-    const int o = B.v_offset, nk = B.hinge.nv(), below = o + nk;
+    const int o = B.v_offset, below = o + B.hinge.nv();
     for (int c = o; c < below; ++c) {
       S fc[6], sc[6];
       for (int i = 0; i < 6; ++i) fc[i] = w.f(c, i), sc[i] = w.s(c, i);
