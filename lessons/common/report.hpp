@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 namespace soa::lesson {
@@ -32,6 +33,16 @@ inline std::string time_text(double ns) {
   if (ns < 1e6) return num(ns / 1e3, "%.3g µs");
   if (ns < 1e9) return num(ns / 1e6, "%.4g ms");
   return num(ns / 1e9, "%.4g s");
+}
+
+/// The CPU's model name from /proc/cpuinfo ("unknown CPU" elsewhere), for the machine line
+/// of a timing report.
+inline std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
 }
 
 }  // namespace soa::lesson

@@ -291,6 +291,31 @@ TEST(articulated_Operators, TransformSymmetric) {
   EXPECT_LE(w.value(), 64 * kEps);
 }
 
+// The shift along a coordinate axis (detail::shift_on_axis()) drops only products with the
+// exact zeros of l and sums with exactly zero terms: with a general rotation, so that only
+// the shift differs, the fast path equals the general one bit for bit (== counts -0 as 0).
+TEST(articulated_Operators, TransformSymmetricShiftOnAnAxisIsBitwiseGeneral) {
+  Random<double> rnd;
+  int differing = 0, taken = 0;
+  for (int i = 0; i < kCases; ++i) {
+    const soa::Phi general = rnd.phi();
+    Vec3 l = Vec3::Zero();
+    l[i % 3] = (i % 2 ? -1.0 : 1.0) * general.l().norm();
+    const soa::Phi phi(general.R(), l);
+    taken += soa::detail::coordinate_offset(phi.l()) == i % 3;
+    Mat6 A;
+    for (int r = 0; r < 6; ++r)
+      for (int s = 0; s < 6; ++s) A(r, s) = rnd.normal();
+    const Mat6 P = A + A.transpose();
+    Mat6 fast, slow;
+    soa::transform_symmetric(phi, P, fast, true);
+    soa::transform_symmetric(phi, P, slow, false);
+    differing += !(fast.array() == slow.array()).all();
+  }
+  EXPECT_EQ(taken, kCases);
+  EXPECT_EQ(differing, 0);
+}
+
 // --- the singular-D diagnostic -----------------------------------------------------------
 
 soa::Hinge revolute(const Vec3& axis) {

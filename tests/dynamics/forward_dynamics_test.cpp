@@ -14,7 +14,8 @@
 // - a lazy workspace (Workspace::lazy()) holds only the parts the functions run fill, with
 //   bitwise the results of a full one;
 // - the fast paths for hinges about a coordinate axis (Model::fast_paths) against the general
-//   path, on chains whose one-dof axes are +-e_i and half of whose placements do not rotate.
+//   path, on chains whose one-dof axes are +-e_i, half of whose placements do not rotate and
+//   half of whose offsets lie along a coordinate axis.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,7 +66,7 @@ TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
   Random<double> rnd;
   std::mt19937 g(soa::test::kSeed);
   Worst worst("|bd_fast - bd_general|/|bd_general| / (eps n cond(M))");
-  int fast_bodies = 0;
+  int fast_bodies = 0, axis_offsets = 0;
   for (int i = 0; i < kCases; ++i) {
     DynamicsCase<double> c(rnd, i);
     for (int k = 1; k <= c.m.n(); ++k) {
@@ -74,7 +75,13 @@ TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
       B.hinge.axis = soa::Vec3<double>::Zero();
       B.hinge.axis[int(g() % 3)] = g() % 2 ? 1.0 : -1.0;
       if (g() % 2) B.placement = soa::Pose(soa::Mat3<double>::Identity(), B.placement.l());
+      if (g() % 2) {  // an offset along a coordinate axis (transform_symmetric's shift)
+        soa::Vec3<double> l = soa::Vec3<double>::Zero();
+        l[int(g() % 3)] = (g() % 2 ? 1.0 : -1.0) * B.placement.l().norm();
+        B.placement = soa::Pose(B.placement.R(), l);
+      }
       if (k > 1 && B.placement.R().isIdentity(0)) ++fast_bodies;
+      if (k > 1 && soa::detail::coordinate_offset(B.placement.l()) >= 0) ++axis_offsets;
     }
     const MassAndBias<double> mc(c);
     const VecX fast = forward(c);
@@ -83,6 +90,7 @@ TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
     worst.add(soa::test::rel(fast, general) / (kEps * c.m.nv() * mc.cond()), i);
   }
   EXPECT_GT(fast_bodies, kCases);  // the fast paths were taken
+  EXPECT_GT(axis_offsets, kCases);
   EXPECT_LE(worst.value(), 1.0);
 }
 

@@ -17,7 +17,8 @@
 namespace soa::test {
 
 /// Hinge axes of a counting chain: about coordinate axes with placements that do not
-/// rotate (the fast paths apply), or general unit axes and rotated placements.
+/// rotate, offset along x (the fast paths apply), or general unit axes and rotated
+/// placements with general offsets.
 enum class Axes { Coordinate, General };
 
 /// A chain of \p n bodies with one hinge type, its state, accelerations and hinge forces:

@@ -35,6 +35,7 @@
 namespace {
 
 using namespace soa::lesson::timing;
+using soa::lesson::cpu_model;
 using soa::lesson::csv_field;
 using soa::lesson::num;
 using soa::lesson::time_text;
@@ -180,14 +181,6 @@ double crossover(const std::vector<Row>& rows, const std::vector<int>& Ns,
   text = "N ≈ " + num(N, "%.0f") + " (CRB + LDLT faster up to N = " + std::to_string(n0) +
          ", the articulated body algorithm from N = " + std::to_string(n1) + ")";
   return N;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
 }
 
 // ---------------------------------------------------------------------------------------

@@ -28,10 +28,15 @@
 #include <thread>
 #include <vector>
 
+#include "report.hpp"  // lessons/common: cpu_model(), time_text()
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+using soa::lesson::cpu_model;
+using soa::lesson::time_text;
 
 struct Run {
   std::string config, flags, compiler;
@@ -89,25 +94,6 @@ std::map<std::string, Run> read_runs(const fs::path& dir) {
     }
   }
   return runs;
-}
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
-
-std::string fmt(double ns) {
-  char b[32];
-  if (ns >= 1e6)
-    std::snprintf(b, sizeof b, "%.3g ms", ns / 1e6);
-  else if (ns >= 1e3)
-    std::snprintf(b, sizeof b, "%.3g µs", ns / 1e3);
-  else
-    std::snprintf(b, sizeof b, "%.3g ns", ns);
-  return b;
 }
 
 // One target: a measured quantity of a run and its bound (both in ns).
@@ -202,14 +188,15 @@ int report(int argc, char** argv) {
       if (t.per_joint)
         std::snprintf(cell, sizeof cell, "%.1f ns/joint (bound %.1f)", v / t.n, *bound / t.n);
       else
-        std::snprintf(cell, sizeof cell, "%s (bound %s)", fmt(v).c_str(), fmt(*bound).c_str());
+        std::snprintf(cell, sizeof cell, "%s (bound %s)", time_text(v).c_str(),
+                      time_text(*bound).c_str());
       const bool met = v <= *bound;
       ++judged;
       if (!met) ++missed;
       md << " " << cell << " | " << (met ? "yes" : "**no**") << " |";
     }
     const auto b = before.find(t.bench);
-    md << " " << (b == before.end() ? std::string("–") : fmt(b->second)) << " |\n";
+    md << " " << (b == before.end() ? std::string("–") : time_text(b->second)) << " |\n";
   }
   md << "\n" << judged - missed << " of " << judged << " met.\n";
   const fs::path out = dir / "speed.md";

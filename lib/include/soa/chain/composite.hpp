@@ -6,8 +6,29 @@
 
 #include "soa/chain/inverse_dynamics.hpp"
 #include "soa/chain/kinematics.hpp"
+#include "soa/detail/plane.hpp"
 
 namespace soa {
+
+namespace detail {
+
+/// composite_inertias() inline, for callers that run it in their own loop
+/// (mass_matrix_inertial()); \p axes may be null.
+template <class S>
+EIGEN_ALWAYS_INLINE void composite_sweep(const ModelT<S>& m, const WorkspaceT<S>& ws,
+                                         SpatialInertiaT<S>* R, int* axes) {
+  const bool fast = m.fast_paths;
+  const int n = m.n();
+  int axis = -1;  // of phi(k,k-1)
+  for (int k = 1; k <= n; ++k) {
+    R[k - 1] =
+        k == 1 ? m.body(1).M : detail::transform_about(ws.phi[k - 2], R[k - 2], axis) + m.body(k).M;
+    axis = fast ? detail::plane_rotation_axis(ws.phi[k - 1].R()) : -1;
+    if (axes) axes[k - 1] = axis;
+  }
+}
+
+}  // namespace detail
 
 /// The composite rigid body inertias by the forward Lyapunov recursion (lesson 5), tip to
 /// base: \f[ R(k) = \phi(k,k-1)\, R(k-1)\, \phi^*(k,k-1) + M(k), \qquad R(0) = 0 , \f]
@@ -15,13 +36,13 @@ namespace soa {
 /// so it is kept as \f$(m, mp, J)\f$. Operator form: \f$R = \mathcal{E}_\phi R
 /// \mathcal{E}_\phi^* + M\f$. A \f$\phi(k,k-1)\f$ turning about a coordinate axis moves
 /// \f$R(k-1)\f$ in its plane (soa::transform()'s fast path, the general one to an ulp)
-/// unless Model::fast_paths is off. Needs update_phi(); \p R must have n entries.
+/// unless Model::fast_paths is off. Needs update_phi(); \p R must have n entries. \p axes,
+/// when given (n entries), gets at k - 1 the coordinate axis \f$\phi(k+1,k)\f$ turns about
+/// (detail::plane_rotation_axis()), or -1 (always -1 with the fast paths off).
 template <class S>
 void composite_inertias(const ModelT<S>& m, const WorkspaceT<S>& ws,
-                        std::vector<SpatialInertiaT<S>>& R) {
-  for (int k = 1; k <= m.n(); ++k)
-    R[k - 1] =
-        k == 1 ? m.body(1).M : transform(ws.phi[k - 2], R[k - 2], m.fast_paths) + m.body(k).M;
+                        std::vector<SpatialInertiaT<S>>& R, std::vector<int>* axes = nullptr) {
+  detail::composite_sweep(m, ws, R.data(), axes ? axes->data() : nullptr);
 }
 
 /// The mass matrix from the composite inertias (lesson 5), \f$O(N^2)\f$:

@@ -99,13 +99,8 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
   const int n = m.n(), nv = m.nv();
   const bool fast = m.fast_paths;
   Mass.resize(nv, nv);
-  // composite_inertias(), keeping the plane axis of each phi for the poses below
-  for (int k = 1; k <= n; ++k) {
-    w.axis[k - 1] = fast ? detail::plane_rotation_axis(ws.phi[k - 1].R()) : -1;
-    w.R[k - 1] =
-        k == 1 ? m.body(1).M
-               : detail::transform_about(ws.phi[k - 2], w.R[k - 2], w.axis[k - 2]) + m.body(k).M;
-  }
+  // composite_inertias(), with the plane axis of each phi for the poses below
+  detail::composite_sweep(m, ws, w.R.data(), w.axis.data());
   // Base to tip: the pose (R, p) of O_k (slides 25-27), then for each column [w; v] of
   // H*(k) and its force [N; F] = R(k) [w; v] at O_k the rows s = [a; v'] and f = [N'; F'],
   // and the diagonal block H(k) R(k) H*(k).

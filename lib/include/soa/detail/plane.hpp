@@ -32,6 +32,25 @@ EIGEN_ALWAYS_INLINE int coordinate_axis(const Vec3<S>& a) {
   return a[j] == S(0) && a[m] == S(0) && (a[i] == S(1) || a[i] == S(-1)) ? i : -1;
 }
 
+/// The \f$i\f$ of an offset \f$l = \lambda e_i\f$ (\f$\lambda \ne 0\f$, the other two
+/// components exactly zero: a placement along a coordinate axis); -1 otherwise.
+template <class S>
+EIGEN_ALWAYS_INLINE int coordinate_offset(const Vec3<S>& l) {
+  const int i = l[0] != S(0) ? 0 : l[1] != S(0) ? 1 : 2;  // the first non-zero component
+  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
+  return l[i] != S(0) && l[j] == S(0) && l[m] == S(0) ? i : -1;
+}
+
+/// Component \p i (\f$\ne I\f$) of \f$\lambda e_I \times v\f$ from \f$v_J, v_K\f$:
+/// \f$-\lambda v_K\f$ for \f$i = J\f$, \f$\lambda v_J\f$ for \f$i = K\f$ (component
+/// \f$I\f$ is zero); the general cross product's value, its product with an exact zero of
+/// \f$l\f$ dropped.
+template <int I, class S>
+EIGEN_ALWAYS_INLINE S axis_cross(int i, S lambda, S vJ, S vK) {
+  constexpr int J = I == 2 ? 0 : I + 1;
+  return i == J ? -(lambda * vK) : lambda * vJ;
+}
+
 /// Calls \p f with std::integral_constant<int, I> for \p axis = I in {0, 1, 2} and returns
 /// true; false (f not called) for -1.
 template <class F>
