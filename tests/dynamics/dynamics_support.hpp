@@ -4,6 +4,8 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <random>
+#include <utility>
 #include <vector>
 
 #include "property.hpp"
@@ -53,5 +55,29 @@ struct MassAndBias {
     return double(ev.maxCoeff() / ev.minCoeff());
   }
 };
+
+/// Turns \p c into a chain where the fast paths apply (Model::fast_paths): every one-dof
+/// hinge about a random \f$\pm e_i\f$, half of the placements not rotating and half of the
+/// offsets along a coordinate axis (of the same length), drawn from \p g. Returns how many
+/// bodies past the tip have a placement that does not rotate (first) and an offset along an
+/// axis (second): a test checks that the paths were taken.
+inline std::pair<int, int> coordinate_axis_chain(DynamicsCase<double>& c, std::mt19937& g) {
+  std::pair<int, int> taken{0, 0};
+  for (int k = 1; k <= c.m.n(); ++k) {
+    soa::Body& B = c.m.body(k);
+    if (B.hinge.nv() != 1) continue;
+    B.hinge.axis = soa::Vec3<double>::Zero();
+    B.hinge.axis[int(g() % 3)] = g() % 2 ? 1.0 : -1.0;
+    if (g() % 2) B.placement = soa::Pose(soa::Mat3<double>::Identity(), B.placement.l());
+    if (g() % 2) {
+      soa::Vec3<double> l = soa::Vec3<double>::Zero();
+      l[int(g() % 3)] = (g() % 2 ? 1.0 : -1.0) * B.placement.l().norm();
+      B.placement = soa::Pose(B.placement.R(), l);
+    }
+    if (k > 1 && B.placement.R().isIdentity(0)) ++taken.first;
+    if (k > 1 && soa::detail::coordinate_offset(B.placement.l()) >= 0) ++taken.second;
+  }
+  return taken;
+}
 
 }  // namespace soa::test

@@ -69,20 +69,8 @@ TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
   int fast_bodies = 0, axis_offsets = 0;
   for (int i = 0; i < kCases; ++i) {
     DynamicsCase<double> c(rnd, i);
-    for (int k = 1; k <= c.m.n(); ++k) {
-      soa::Body& B = c.m.body(k);
-      if (B.hinge.nv() != 1) continue;
-      B.hinge.axis = soa::Vec3<double>::Zero();
-      B.hinge.axis[int(g() % 3)] = g() % 2 ? 1.0 : -1.0;
-      if (g() % 2) B.placement = soa::Pose(soa::Mat3<double>::Identity(), B.placement.l());
-      if (g() % 2) {  // an offset along a coordinate axis (transform_symmetric's shift)
-        soa::Vec3<double> l = soa::Vec3<double>::Zero();
-        l[int(g() % 3)] = (g() % 2 ? 1.0 : -1.0) * B.placement.l().norm();
-        B.placement = soa::Pose(B.placement.R(), l);
-      }
-      if (k > 1 && B.placement.R().isIdentity(0)) ++fast_bodies;
-      if (k > 1 && soa::detail::coordinate_offset(B.placement.l()) >= 0) ++axis_offsets;
-    }
+    const auto [unrotated, offsets] = soa::test::coordinate_axis_chain(c, g);
+    fast_bodies += unrotated, axis_offsets += offsets;
     const MassAndBias<double> mc(c);
     const VecX fast = forward(c);
     c.m.fast_paths = false;

@@ -33,9 +33,10 @@ using Upsilon = UpsilonT<double>;
 /// \f$J = \begin{pmatrix} 0 & I \\ I & 0 \end{pmatrix}\f$,
 /// \f$J\phi^*J = \phi^{-1} = (R^*, -R^*l)\f$, so
 /// \f$\phi^* U\phi = J\,[\phi^{-1}\,(JUJ)\,\phi^{-*}]\,J\f$, one transform_symmetric().
-/// Writes \p out, which must not be \p U.
+/// Writes \p out, which must not be \p U. \p fast_path as in transform_symmetric().
 template <class S>
-void transpose_transform_symmetric(const PhiT<S>& phi, const Mat6<S>& U, Mat6<S>& out) {
+void transpose_transform_symmetric(const PhiT<S>& phi, const Mat6<S>& U, Mat6<S>& out,
+                                   bool fast_path = true) {
   const auto swap_blocks = [](const Mat6<S>& a, Mat6<S>& b) {
     b.template topLeftCorner<3, 3>() = a.template bottomRightCorner<3, 3>();
     b.template topRightCorner<3, 3>() = a.template bottomLeftCorner<3, 3>();
@@ -44,7 +45,7 @@ void transpose_transform_symmetric(const PhiT<S>& phi, const Mat6<S>& U, Mat6<S>
   };
   Mat6<S> JUJ, T;
   swap_blocks(U, JUJ);
-  transform_symmetric(phi.inverse(), JUJ, T);
+  transform_symmetric(phi.inverse(), JUJ, T, fast_path);
   swap_blocks(T, out);
 }
 
@@ -66,7 +67,7 @@ void upsilon_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& w
   const int i = k - 1;
   Mat6<S>& U = w.Upsilon[i];
   if (k < m.n())
-    transpose_transform_symmetric(ws.phi[i], w.Upsilon[i + 1], U);  // Upsilon+(k), for now
+    transpose_transform_symmetric(ws.phi[i], w.Upsilon[i + 1], U, m.fast_paths);  // Upsilon+(k)
   else
     U.setZero();
   const JointMap<S>& G = w.art.G[i];
