@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "../bench_chain.hpp"
-#include "peer_kdl.hpp"
+#include "kdl_chain.hpp"
 #include "peer_mujoco.hpp"
 #include "soa/soa.hpp"
 
@@ -327,7 +327,8 @@ Result run_chain(int n, const Options& o) {
   ours_forward();
 
   // KDL.
-  soa::compare::KdlPeer kdl(model, model.gravity);
+  const double g[3] = {model.gravity[0], model.gravity[1], model.gravity[2]};
+  soa::compare::KdlPeer kdl(soa::compare::kdl_segments(model), g);
   if (int(kdl.n) != n)
     fail("KDL: the chain has " + std::to_string(kdl.n) + " joints, not " + std::to_string(n), 1);
   {
@@ -497,9 +498,10 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
      << SOA_COMPARE_FLAGS << "`. KDL and MuJoCo are Debian's shared libraries, built with "
      << "Debian's flags.\n";
   md << "- Libraries: soa " << SOA_COMPARE_VERSION << " with Eigen " << EIGEN_WORLD_VERSION << '.'
-     << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "; Orocos KDL " << KDL_VERSION_STRING
-     << " (Debian liborocos-kdl-dev " << SOA_COMPARE_KDL_DEB << "); MuJoCo " << mj_versionString()
-     << " (Debian libmujoco-dev " << SOA_COMPARE_MUJOCO_DEB << ").\n";
+     << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "; Orocos KDL "
+     << soa::compare::KdlPeer::version() << " (Debian liborocos-kdl-dev " << SOA_COMPARE_KDL_DEB
+     << "); MuJoCo " << mj_versionString() << " (Debian libmujoco-dev " << SOA_COMPARE_MUJOCO_DEB
+     << ").\n";
   md << "- Timing: " << o.passes << " interleaved passes (ours, KDL, MuJoCo, ours, ...), each "
      << "at least " << o.min_ms << " ms of repeated calls; the median time per call, divided "
      << "by N. Ratios are theirs / ours (above 1: ours is faster).\n";
