@@ -496,7 +496,8 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   md << "- Machine: " << machine() << "\n";
   md << "- Compiler: " << compiler() << "; flags of ours and of the calling code: `"
      << SOA_COMPARE_FLAGS << "`. KDL and MuJoCo are Debian's shared libraries, built with "
-     << "Debian's flags.\n";
+     << "Debian's flags; the one unit that calls KDL (peer_kdl.cpp) is compiled without "
+     << "-march=native, as libkdl is (its Eigen members' layout).\n";
   md << "- Libraries: soa " << SOA_COMPARE_VERSION << " with Eigen " << EIGEN_WORLD_VERSION << '.'
      << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "; Orocos KDL "
      << soa::compare::KdlPeer::version() << " (Debian liborocos-kdl-dev " << SOA_COMPARE_KDL_DEB
