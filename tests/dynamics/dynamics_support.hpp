@@ -80,4 +80,19 @@ inline std::pair<int, int> coordinate_axis_chain(DynamicsCase<double>& c, std::m
   return taken;
 }
 
+/// Calls \p f(c, i) on the kCases random cases of \p rnd, each made a coordinate_axis_chain()
+/// with one generator seeded kSeed. Returns the summed counts of coordinate_axis_chain().
+template <class F>
+std::pair<int, int> for_each_coordinate_axis_case(Random<double>& rnd, F&& f) {
+  std::mt19937 g(kSeed);
+  std::pair<int, int> taken{0, 0};
+  for (int i = 0; i < kCases; ++i) {
+    DynamicsCase<double> c(rnd, i);
+    const std::pair<int, int> t = coordinate_axis_chain(c, g);
+    taken.first += t.first, taken.second += t.second;
+    f(c, i);
+  }
+  return taken;
+}
+
 }  // namespace soa::test

@@ -20,7 +20,6 @@
 
 #include <cmath>
 #include <limits>
-#include <random>
 #include <string>
 
 #include "dynamics_support.hpp"
@@ -64,19 +63,15 @@ TEST(dynamics_Forward, AgreesWithCompositeBodiesAndLDLT) {
 // and in products with exact zeros and ones.
 TEST(dynamics_Forward, FastPathsAgreeWithTheGeneralPath) {
   Random<double> rnd;
-  std::mt19937 g(soa::test::kSeed);
   Worst worst("|bd_fast - bd_general|/|bd_general| / (eps n cond(M))");
-  int fast_bodies = 0, axis_offsets = 0;
-  for (int i = 0; i < kCases; ++i) {
-    DynamicsCase<double> c(rnd, i);
-    const auto [unrotated, offsets] = soa::test::coordinate_axis_chain(c, g);
-    fast_bodies += unrotated, axis_offsets += offsets;
-    const MassAndBias<double> mc(c);
-    const VecX fast = forward(c);
-    c.m.fast_paths = false;
-    const VecX general = forward(c);
-    worst.add(soa::test::rel(fast, general) / (kEps * c.m.nv() * mc.cond()), i);
-  }
+  const auto [fast_bodies, axis_offsets] =
+      soa::test::for_each_coordinate_axis_case(rnd, [&](DynamicsCase<double>& c, int i) {
+        const MassAndBias<double> mc(c);
+        const VecX fast = forward(c);
+        c.m.fast_paths = false;
+        const VecX general = forward(c);
+        worst.add(soa::test::rel(fast, general) / (kEps * c.m.nv() * mc.cond()), i);
+      });
   EXPECT_GT(fast_bodies, kCases);  // the fast paths were taken
   EXPECT_GT(axis_offsets, kCases);
   EXPECT_LE(worst.value(), 1.0);

@@ -8,7 +8,6 @@
 // - a singular D(k) throws as the Riccati recursion does.
 #include <gtest/gtest.h>
 
-#include <random>
 #include <string>
 
 #include "dynamics_support.hpp"
@@ -55,28 +54,24 @@ TEST(dynamics_MassMatrixInverse, AgreesWithTheDenseInverse) {
 // of lesson 7 (section 7), against the general path, on chains where they apply.
 TEST(dynamics_MassMatrixInverse, FastPathsAgreeWithTheGeneralPath) {
   Random<double> rnd(37);
-  std::mt19937 g(soa::test::kSeed);
   Worst sweep("column sweep: |Minv_fast - Minv_general| / (|Minv| eps n cond(M))");
   Worst upsilon("Upsilon: |Minv_fast - Minv_general| / (|Minv| eps n cond(M))");
-  int fast_bodies = 0, axis_offsets = 0;
-  for (int i = 0; i < kCases; ++i) {
-    DynamicsCase<double> c(rnd, i);
-    const auto [unrotated, offsets] = soa::test::coordinate_axis_chain(c, g);
-    fast_bodies += unrotated, axis_offsets += offsets;
-    const MassAndBias<double> mc(c);
-    soa::Workspace ws(c.m);
-    soa::update_phi(c.m, c.x.theta, ws);
-    soa::MassMatrixInverseUpsilon wu(c.m);
-    MatX sweep_fast, sweep_general, ups_fast, ups_general;
-    soa::mass_matrix_inverse_upsilon(c.m, c.x, ws, wu, ups_fast);
-    sweep_fast = inverse(c);
-    c.m.fast_paths = false;
-    soa::mass_matrix_inverse_upsilon(c.m, c.x, ws, wu, ups_general);
-    sweep_general = inverse(c);
-    const double scale = kEps * c.m.nv() * mc.cond();
-    sweep.add((sweep_fast - sweep_general).norm() / sweep_general.norm() / scale, i);
-    upsilon.add((ups_fast - ups_general).norm() / ups_general.norm() / scale, i);
-  }
+  const auto [fast_bodies, axis_offsets] =
+      soa::test::for_each_coordinate_axis_case(rnd, [&](DynamicsCase<double>& c, int i) {
+        const MassAndBias<double> mc(c);
+        soa::Workspace ws(c.m);
+        soa::update_phi(c.m, c.x.theta, ws);
+        soa::MassMatrixInverseUpsilon wu(c.m);
+        MatX ups_fast, ups_general;
+        soa::mass_matrix_inverse_upsilon(c.m, c.x, ws, wu, ups_fast);
+        const MatX sweep_fast = inverse(c);
+        c.m.fast_paths = false;
+        soa::mass_matrix_inverse_upsilon(c.m, c.x, ws, wu, ups_general);
+        const MatX sweep_general = inverse(c);
+        const double scale = kEps * c.m.nv() * mc.cond();
+        sweep.add((sweep_fast - sweep_general).norm() / sweep_general.norm() / scale, i);
+        upsilon.add((ups_fast - ups_general).norm() / ups_general.norm() / scale, i);
+      });
   EXPECT_GT(fast_bodies, kCases);  // the fast paths were taken
   EXPECT_GT(axis_offsets, kCases);
   EXPECT_LE(sweep.value(), 1.0);

@@ -67,7 +67,7 @@
   PREFIX template void inverse_dynamics<S>(const ModelT<S>&, const StateT<S>&, const VecX<S>&,   \
                                            const ExternalForces<S>&, WorkspaceT<S>&, VecX<S>&);  \
   PREFIX template void composite_inertias<S>(const ModelT<S>&, const WorkspaceT<S>&,             \
-                                             std::vector<SpatialInertiaT<S>>&, std::vector<int>*); \
+                                             std::vector<SpatialInertiaT<S>>&);                  \
   PREFIX template struct MassMatrixInertialT<S>;                                                 \
   PREFIX template void mass_matrix_inertial<S>(const ModelT<S>&, const StateT<S>&,               \
                                                const WorkspaceT<S>&, MassMatrixInertialT<S>&,    \

@@ -12,8 +12,9 @@ namespace soa {
 
 namespace detail {
 
-/// composite_inertias() inline, for callers that run it in their own loop
-/// (mass_matrix_inertial()); \p axes may be null.
+/// composite_inertias() inline, for mass_matrix_inertial(); \p axes, when not null (n
+/// entries), gets at k - 1 the coordinate axis \f$\phi(k+1,k)\f$ turns about
+/// (detail::plane_rotation_axis()), or -1 (always -1 with the fast paths off).
 template <class S>
 EIGEN_ALWAYS_INLINE void composite_sweep(const ModelT<S>& m, const WorkspaceT<S>& ws,
                                          SpatialInertiaT<S>* R, int* axes) {
@@ -36,13 +37,11 @@ EIGEN_ALWAYS_INLINE void composite_sweep(const ModelT<S>& m, const WorkspaceT<S>
 /// so it is kept as \f$(m, mp, J)\f$. Operator form: \f$R = \mathcal{E}_\phi R
 /// \mathcal{E}_\phi^* + M\f$. A \f$\phi(k,k-1)\f$ turning about a coordinate axis moves
 /// \f$R(k-1)\f$ in its plane (soa::transform()'s fast path, the general one to an ulp)
-/// unless Model::fast_paths is off. Needs update_phi(); \p R must have n entries. \p axes,
-/// when given (n entries), gets at k - 1 the coordinate axis \f$\phi(k+1,k)\f$ turns about
-/// (detail::plane_rotation_axis()), or -1 (always -1 with the fast paths off).
+/// unless Model::fast_paths is off. Needs update_phi(); \p R must have n entries.
 template <class S>
 void composite_inertias(const ModelT<S>& m, const WorkspaceT<S>& ws,
-                        std::vector<SpatialInertiaT<S>>& R, std::vector<int>* axes = nullptr) {
-  detail::composite_sweep(m, ws, R.data(), axes ? axes->data() : nullptr);
+                        std::vector<SpatialInertiaT<S>>& R) {
+  detail::composite_sweep(m, ws, R.data(), static_cast<int*>(nullptr));
 }
 
 /// The mass matrix from the composite inertias (lesson 5), \f$O(N^2)\f$:

@@ -24,14 +24,6 @@ EIGEN_ALWAYS_INLINE int plane_rotation_axis(const Mat3<S>& R) {
   return -1;
 }
 
-/// The \f$i\f$ of an axis that is exactly \f$\pm e_i\f$; -1 otherwise.
-template <class S>
-EIGEN_ALWAYS_INLINE int coordinate_axis(const Vec3<S>& a) {
-  const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;  // the first non-zero component
-  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
-  return a[j] == S(0) && a[m] == S(0) && (a[i] == S(1) || a[i] == S(-1)) ? i : -1;
-}
-
 /// The \f$i\f$ of an offset \f$l = \lambda e_i\f$ (\f$\lambda \ne 0\f$, the other two
 /// components exactly zero: a placement along a coordinate axis); -1 otherwise.
 template <class S>
@@ -39,6 +31,13 @@ EIGEN_ALWAYS_INLINE int coordinate_offset(const Vec3<S>& l) {
   const int i = l[0] != S(0) ? 0 : l[1] != S(0) ? 1 : 2;  // the first non-zero component
   const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
   return l[i] != S(0) && l[j] == S(0) && l[m] == S(0) ? i : -1;
+}
+
+/// The \f$i\f$ of an axis that is exactly \f$\pm e_i\f$; -1 otherwise.
+template <class S>
+EIGEN_ALWAYS_INLINE int coordinate_axis(const Vec3<S>& a) {
+  const int i = coordinate_offset(a);
+  return i >= 0 && (a[i] == S(1) || a[i] == S(-1)) ? i : -1;
 }
 
 /// Component \p i (\f$\ne I\f$) of \f$\lambda e_I \times v\f$ from \f$v_J, v_K\f$:
