@@ -9,7 +9,8 @@
 //   dampers, external forces and a control law;
 // - a fixed step converges at order 2 (against dopri5 at 1e-13);
 // - the energy error stays bounded on the double pendulum at h = 0.02 s; Newton's method gets
-//   through the seven-joint arm's fast phases at h = 0.005 s;
+//   through the seven-joint arm's fast phases at h = 0.005 s; where Newton from the step's
+//   start fails (the arm at h = 0.02 s), continuation in the step finds the symmetric map;
 // - a chain with a spherical hinge is refused with one line naming the body and the hinge.
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "count_allocations.hpp"  // this program's one file that includes it
 #include "fit.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
@@ -247,6 +249,52 @@ TEST(simulation_Variational, NewtonGetsThroughTheArmsFastPhases) {
       "[ drift    ] variational, arm7, h = 0.005 s over 40 s: max |E - E0| %.3e J of %.3f J\n",
       worst, E.front());
   EXPECT_LE(worst, 0.1 * std::abs(E.front()));
+}
+
+// Newton's failure from the step's start handled by continuation in the step: the
+// seven-joint arm at h = 0.02 s meets, within its first 2 s, steps where Newton from Z = 0
+// diverges (before continued_solve(), the variational run stopped at step 96, t = 1.9 s, the
+// implicit midpoint one at t = 0.6 s). The continued step must be the implicit midpoint map
+// itself: that map is symmetric, so the step back (-h from the new state) returns to the old
+// one, to Newton's tolerance times the conditioning (checked on every continued step, worst
+// reported); both runs get past t = 2 s; and the continued steps allocate nothing.
+TEST(simulation_Variational, NewtonFailureIsHandledByContinuationInTheStep) {
+  const soa::Scene sc = soa::load_scene(std::string(SOA_SCENE_DIR) + "/arm7.json");
+  for (const Integrator method : {Integrator::Variational, Integrator::ImplicitMidpoint}) {
+    soa::ChainSystem sys(sc.model);
+    soa::Stepper stepper(sys);
+    const double h = 0.02;
+    State x = sc.state, x1 = x, back = x;
+    int continued = 0, steps = 0;
+    double worst = 0, t = 0;
+    const auto step = [&](double t0, double dt, const State& a, State& b) {
+      return method == Integrator::Variational ? stepper.variational(t0, dt, a, b)
+                                               : stepper.implicit_midpoint(t0, dt, a, b);
+    };
+    long allocated = 0;  // by the continued steps
+    for (; steps < 150; ++steps, t += h) {
+      const long before = stepper.continuations(), heap = soa::test::allocations();
+      if (!step(t, h, x, x1)) break;
+      if (stepper.continuations() > before) {
+        allocated += soa::test::allocations() - heap;
+        ++continued;
+        ASSERT_TRUE(step(t + h, -h, x1, back)) << "the step back from t = " << t + h;
+        const double size = 1 + x.theta.norm() + x.beta.norm();
+        worst = std::max(worst, std::sqrt((back.theta - x.theta).squaredNorm() +
+                                          (back.beta - x.beta).squaredNorm()) /
+                                    size);
+      }
+      x = x1;
+    }
+    std::printf(
+        "[ newton   ] %s, arm7, h = %g s: %d steps, %d continued, worst |back - x0| / (1 + "
+        "|x0|) %.3e\n",
+        soa::integrator_name(method), h, steps, continued, worst);
+    EXPECT_GT(steps * h, 2.0) << "stopped at t = " << steps * h;
+    EXPECT_GT(continued, 0);
+    EXPECT_LE(worst, 1e-8);
+    EXPECT_EQ(allocated, 0) << "heap allocations in the continued steps";
+  }
 }
 
 TEST(simulation_Variational, QuaternionHingesAreRefusedInOneLine) {

@@ -227,12 +227,14 @@ class StepperT {
   /// Implicit midpoint: with \f$Z = (u, w)\f$ the step in local coordinates and velocity,
   /// \f$Z = h\,F(Z/2)\f$, \f$F\f$ the rate at \f$(\theta_0 \oplus u/2,\ \beta_0 + w/2)\f$;
   /// solved by Newton's method with the Jacobian of the dynamics by finite differences
-  /// (frozen during the step). Returns false when Newton does not converge. Allocates nothing
-  /// once the first call has sized the workspace (shared with esdirk()).
+  /// (frozen during the step); when that fails, by continuation in the step
+  /// (continued_solve(): the same equation at h/m, 2h/m, ..., h, each from the last).
+  /// Returns false when neither converges. Allocates nothing once the first call has sized
+  /// the workspace (shared with esdirk()).
   bool implicit_midpoint(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
-    if (!midpoint_solve(h, false,
-                        [&](const VecX<S>& Zh, VecX<S>& F) { rate_at(t + h / 2, x0, Zh, F); }))
-      return false;
+    S hk = h;  // the step of the equation being solved
+    const auto rate = [&](const VecX<S>& Zh, VecX<S>& F) { rate_at(t + hk / 2, x0, Zh, F); };
+    if (!midpoint_solve(h, false, rate) && !continued_solve(h, hk, rate)) return false;
     u_ = Zs_[0].head(nv_);
     x1.beta = x0.beta + Zs_[0].tail(nv_);
     finish(x0.theta, x1);
@@ -248,7 +250,8 @@ class StepperT {
   ///     + Q\big) \f]
   /// (canonical_rate()), solved as implicit_midpoint() does: \f$Z = z_1 - z_0 = hF(z_0 +
   /// Z/2)\f$ by simplified Newton with a finite-difference Jacobian, taken again when Newton
-  /// diverges or contracts slowly (midpoint_solve() with refresh). From \f$(\theta_0,
+  /// diverges or contracts slowly (midpoint_solve() with refresh), and by continuation in the
+  /// step when Newton from \f$Z = 0\f$ fails (continued_solve()). From \f$(\theta_0,
   /// \beta_0)\f$: \f$p_0 = \mathcal M(\theta_0)\beta_0\f$ (ChainSystemT::momentum()), and after
   /// the step \f$\beta_1 = \mathcal M^{-1}(\theta_1)p_1\f$ (ChainSystemT::velocity()), all
   /// O(N). Needs hinges whose coordinates add (require_coordinates_add() throws otherwise).
@@ -256,10 +259,11 @@ class StepperT {
   bool variational(S t, S h, const StateT<S>& x0, StateT<S>& x1) {
     require_coordinates_add(sys_.model());
     sys_.momentum(x0, p0_);
-    if (!midpoint_solve(h, true, [&](const VecX<S>& Zh, VecX<S>& F) {
-          canonical_rate(t + h / 2, x0.theta, Zh, F);
-        }))
-      return false;
+    S hk = h;  // the step of the equation being solved
+    const auto rate = [&](const VecX<S>& Zh, VecX<S>& F) {
+      canonical_rate(t + hk / 2, x0.theta, Zh, F);
+    };
+    if (!midpoint_solve(h, true, rate) && !continued_solve(h, hk, rate)) return false;
     u_ = Zs_[0].head(nv_);
     finish(x0.theta, x1);
     pc_ = p0_ + Zs_[0].tail(nv_);
@@ -308,10 +312,16 @@ class StepperT {
     /// \f$|\Delta Z|_2\f$ of \f$Z = (u, w)\f$
     S residual = S(0);
     bool diverged = false;  ///< the corrections grew (else: too slow)
+    /// variational: the largest step whose equation continued_solve() solved on its way to
+    /// h (0: none)
+    S reached = S(0);
   };
   const NewtonFailure& newton_failure() const { return failure_; }
   /// Jacobians computed (each \f$2n_v\f$ forward dynamics calls) and LU factorizations.
   long jacobians() const { return jacobians_; }
+  /// Subdivisions tried by variational() when Newton from the step's start failed
+  /// (continued_solve()).
+  long continuations() const { return continuations_; }
   long factorizations() const { return factorizations_; }
 
   /// ESDIRK4(3)6L[2]SA (Kennedy and Carpenter, Appl. Numer. Math. 44, 2003; the implicit
@@ -386,25 +396,29 @@ class StepperT {
   // that does not contract (the rate's evaluation is exact to about eps cond(M) |F|, above
   // 16 eps |Z| on an ill-conditioned mass matrix), and the iteration has converged.
   template <class Rate>
-  bool midpoint_solve(S h, bool refresh, Rate&& rate) {
+  bool midpoint_solve(S h, bool refresh, Rate&& rate, bool warm = false) {
     const int n2 = 2 * nv_;
     size_workspace();
     jac_valid_ = false;  // J_ and lu_ hold this method's matrix now, not esdirk()'s
     fresh_lu_needed_ = true;
     VecX<S>& Z = Zs_[0];
     VecX<S>& F = Fs_[0];
-    Z.setZero();
-    rate(Z, F);
-    r_.setZero();
-    for (int i = 0; i < n2; ++i) {
-      const S d = std::sqrt(eps<S>());
-      r_[i] = d;
-      rate(r_, Fp_);
-      r_[i] = S(0);
-      A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
-      A_(i, i) += S(1);
+    if (warm) {  // from the Z given in Zs_[0] (continued_solve())
+      jacobian_at(h, Z, F, rate);
+    } else {
+      Z.setZero();
+      rate(Z, F);
+      r_.setZero();
+      for (int i = 0; i < n2; ++i) {
+        const S d = std::sqrt(eps<S>());
+        r_[i] = d;
+        rate(r_, Fp_);
+        r_[i] = S(0);
+        A_.col(i) = -(h / S(2)) * (Fp_ - F) / d;
+        A_(i, i) += S(1);
+      }
+      lu_.compute(A_);
     }
-    lu_.compute(A_);
     S last = S(0);
     int refreshes = 0;
     // k counts the iterations since the last Jacobian.
@@ -417,7 +431,7 @@ class StepperT {
       dZ_ = lu_.solve(r_);
       Z -= dZ_;
       const S size = dZ_.norm(), tol = S(16) * eps<S>() * (S(1) + Z.norm());
-      failure_ = NewtonFailure{1, size, !Z.allFinite()};
+      failure_ = NewtonFailure{1, size, !Z.allFinite(), S(0)};
       if (!Z.allFinite() && !refresh) return false;
       if (size <= tol) break;
       const S theta = k > 0 ? size / last : S(0);
@@ -450,6 +464,30 @@ class StepperT {
   }
   // The most Jacobians midpoint_solve() takes again in one variational() step.
   static constexpr int kRefreshes = 4;
+  // Continuation in the step (a globalized Newton; Allgower and Georg, Numerical
+  // Continuation Methods, ch. 1): when Newton from Z = 0 fails at h, the solutions Z(h_j)
+  // of the same equation at h_j = j h / m, j = 1 ... m, each from the predictor
+  // Z(h_{j-1}) h_j / h_{j-1}, for m = 2, 4, ..., kSubdivisions. The last one is the step at
+  // h itself, on the branch of solutions that starts at Z(0) = 0: the same map, found from
+  // closer starts. \p hk is the step \p rate reads.
+  static constexpr int kSubdivisions = 16;
+  template <class Rate>
+  bool continued_solve(S h, S& hk, Rate& rate) {
+    S reached = S(0);
+    for (int m = 2; m <= kSubdivisions; m *= 2) {
+      bool ok = true;
+      for (int j = 1; j <= m && ok; ++j) {
+        hk = h * S(j) / S(m);
+        if (j > 1) Zs_[0] *= S(j) / S(j - 1);
+        ok = midpoint_solve(hk, true, rate, j > 1);
+        if (ok) reached = std::max(reached, hk);
+      }
+      ++continuations_;
+      if (ok) return true;
+    }
+    failure_.reached = reached;
+    return false;
+  }
   // A_ = I - (h/2) dF/dZ at the midpoint offset Z/2 by forward differences, factorized; F
   // gets the rate there.
   template <class Rate>
@@ -524,13 +562,13 @@ class StepperT {
       Z -= dZ_;
       const S size = scaled_norm(dZ_);
       if (!std::isfinite(double(size)) || !Z.allFinite()) {
-        failure_ = {stage, size, true};
+        failure_ = {stage, size, true, S(0)};
         return false;
       }
       if (it > 0) {
         theta = size / last;
         if (theta >= S(1)) {
-          failure_ = {stage, size, true};
+          failure_ = {stage, size, true, S(0)};
           refresh_ = true;
           return false;
         }
@@ -541,7 +579,7 @@ class StepperT {
       }
       last = size;
     }
-    failure_ = {stage, last, false};
+    failure_ = {stage, last, false, S(0)};
     refresh_ = true;
     return false;
   }
@@ -575,7 +613,7 @@ class StepperT {
   Eigen::PartialPivLU<MatX<S>> lu_;
   S lu_hg_ = S(0), tol_ = S(1e-6);  // the h gamma of lu_
   bool jac_valid_ = false, refresh_ = false, fresh_lu_needed_ = true;
-  long jacobians_ = 0, factorizations_ = 0;
+  long jacobians_ = 0, factorizations_ = 0, continuations_ = 0;
   NewtonFailure failure_;
 };
 using Stepper = StepperT<double>;

@@ -201,10 +201,15 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     }
     if (!ok) {
       const auto& f = stepper.newton_failure();
-      char what[160];
-      std::snprintf(what, sizeof what,
-                    "Newton's method did not converge (last correction |dZ| = %.3g, %s)",
-                    double(f.residual), f.diverged ? "diverging" : "too slow");
+      char what[240];
+      const int n = std::snprintf(what, sizeof what,
+                                  "Newton's method did not converge (last correction |dZ| = "
+                                  "%.3g, %s)",
+                                  double(f.residual), f.diverged ? "diverging" : "too slow");
+      if (f.reached > S(0) && n > 0 && std::size_t(n) < sizeof what)
+        std::snprintf(what + n, sizeof what - std::size_t(n),
+                      "; continued in the step, its equation solved up to h = %.3g only",
+                      double(f.reached));
       blow_up(what, h);
     }
     if (adaptive) {
