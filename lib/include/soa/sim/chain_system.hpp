@@ -89,7 +89,8 @@ class ChainSystemT {
         f_ext_(std::move(f_ext)),
         control_(std::move(control)),
         ws_(m),
-        fd_(m),
+        fd_(ForwardDynamicsT<S>::lean(m)),
+        fd_full_(m),
         T_(VecX<S>::Zero(m.nv())),
         rest_(StateT<S>::rest(m)),
         zero_(VecX<S>::Zero(m.nv())),
@@ -99,7 +100,9 @@ class ChainSystemT {
   const ModelT<S>& model() const { return m_; }
   long evaluations() const { return evaluations_; }
 
-  /// \f$\dot\beta\f$ at time \p t and state \p x.
+  /// \f$\dot\beta\f$ at time \p t and state \p x: forward dynamics with the lean
+  /// storage (ForwardDynamicsT::lean(); a simulation reads no per-body quantity, and the
+  /// result is the same bit for bit), which keeps a long chain's pass in cache.
   void acceleration(S t, const StateT<S>& x, VecX<S>& beta_dot) {
     ++evaluations_;
     if (control_) control_(t, x, T_);
@@ -118,7 +121,7 @@ class ChainSystemT {
   void velocity(const StateT<S>& x, const VecX<S>& p, VecX<S>& beta) {
     ++evaluations_;
     beta.resize(m_.nv());
-    mass_matrix_inverse_times(m_, x, p, ws_, fd_, beta);
+    mass_matrix_inverse_times(m_, x, p, ws_, fd_full_, beta);
   }
 
   /// The generalized forces \f$Q(t,\theta,\beta)\f$, everything but the inertia:
@@ -192,7 +195,8 @@ class ChainSystemT {
   ExternalForces<S> f_ext_;
   Control control_;
   WorkspaceT<S> ws_;
-  ForwardDynamicsT<S> fd_;
+  ForwardDynamicsT<S> fd_;       // acceleration(): lean storage
+  ForwardDynamicsT<S> fd_full_;  // velocity(): mass_matrix_inverse_times() needs the full one
   VecX<S> T_;
   StateT<S> rest_;        // generalized_force(): (theta, 0)
   VecX<S> zero_, p_, Q_;  // beta_dot = 0; momentum_rate()'s p and Q
