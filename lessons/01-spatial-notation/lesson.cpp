@@ -37,6 +37,7 @@
 #include <Eigen/Eigenvalues>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "soa/soa.hpp"
 
@@ -135,12 +136,7 @@ bool throws_soa_error(const F& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out_dir = argv[1];
-  std::filesystem::create_directories(out_dir);
+  const std::filesystem::path out_dir = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   /// ## The cross-product matrix (slide 8)

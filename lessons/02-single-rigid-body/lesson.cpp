@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "report.hpp"
@@ -224,12 +225,7 @@ double fitted_order(const std::vector<double>& h, const std::vector<double>& e) 
 }
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
   const double eps = soa::eps<double>();
 

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "scenes.hpp"
@@ -287,12 +288,7 @@ std::pair<double, double> eigen_range(const MatX& A) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   /// ## 1. One body of the chain: the Newton–Euler recursions

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "scenes.hpp"
@@ -155,12 +156,7 @@ MatX mass_matrix_columns(const Model& m, const VecX& theta) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   State x;

@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "chain_builder.hpp"
 #include "checklist.hpp"
 #include "extreme_cases.hpp"
@@ -140,12 +141,7 @@ MatX block_diagonal(const std::vector<Mat6>& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   const Model m = small_chain();

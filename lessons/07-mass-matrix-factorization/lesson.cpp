@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "soa/chain.hpp"
@@ -391,12 +392,7 @@ void print(const char* name, const MatX& A) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   /// ## 1. The operators, and the chains of this lesson

@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "chain_builder.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
@@ -383,12 +384,7 @@ double energy_drift(const soa::view::Run& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTPUT_DIR\n", argv[0]);
-    return 2;
-  }
-  const std::filesystem::path out = argv[1];
-  std::filesystem::create_directories(out);
+  const std::filesystem::path out = soa::lesson::output_dir(argc, argv);
   soa::lesson::Checklist checks;
 
   /// ## 1. The problem

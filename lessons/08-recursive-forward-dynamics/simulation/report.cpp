@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "cvode.hpp"
 #include "extreme.hpp"
@@ -677,13 +678,8 @@ void summary_section(Checklist& checks, const fs::path& out, const Summary& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
-    return 2;
-  }
-  const fs::path out = argv[1];
-  const bool quick = argc > 2 && std::strcmp(argv[2], "--quick") == 0;
-  fs::create_directories(out);
+  bool quick = false;
+  const fs::path out = soa::lesson::output_dir(argc, argv, &quick);
   std::printf("Lesson 8: simulation report%s (flags: %s)\n", quick ? " (--quick)" : "",
               SOA_TIMING_FLAGS);
   Checklist checks;

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "args.hpp"
 #include "checklist.hpp"
 #include "plot.hpp"
 #include "problems.hpp"
@@ -366,14 +367,8 @@ void write_extreme_md(std::ostream& out, const std::vector<Extreme>& rows,
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTDIR [--quick]\n", argv[0]);
-    return 2;
-  }
-  const fs::path out = argv[1];
-  fs::create_directories(out);
   Settings cfg;
-  for (int i = 2; i < argc; ++i) cfg.quick = cfg.quick || std::string(argv[i]) == "--quick";
+  const fs::path out = soa::lesson::output_dir(argc, argv, &cfg.quick);
   if (cfg.quick) {
     cfg.Ns = {1, 2, 4, 7, 12, 20, 50};
     cfg.min_time = 1e-4;
