@@ -312,15 +312,15 @@ class StepperT {
     /// \f$|\Delta Z|_2\f$ of \f$Z = (u, w)\f$
     S residual = S(0);
     bool diverged = false;  ///< the corrections grew (else: too slow)
-    /// variational: the largest step whose equation continued_solve() solved on its way to
-    /// h (0: none)
+    /// implicit midpoint and variational: the largest step whose equation
+    /// continued_solve() solved on its way to h (0: none)
     S reached = S(0);
   };
   const NewtonFailure& newton_failure() const { return failure_; }
   /// Jacobians computed (each \f$2n_v\f$ forward dynamics calls) and LU factorizations.
   long jacobians() const { return jacobians_; }
-  /// Subdivisions tried by variational() when Newton from the step's start failed
-  /// (continued_solve()).
+  /// Subdivisions tried by implicit_midpoint() and variational() when Newton from the
+  /// step's start failed (continued_solve()).
   long continuations() const { return continuations_; }
   long factorizations() const { return factorizations_; }
 
