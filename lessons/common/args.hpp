@@ -16,8 +16,9 @@ namespace soa::lesson {
 /// folder or a folder that cannot be created prints one line and exits 2. An argument that
 /// starts with '-' is never taken for the folder.
 inline std::filesystem::path output_dir(int argc, char** argv, bool* quick = nullptr) {
-  const std::string usage = std::string("usage: ") + (argc > 0 ? argv[0] : "lesson") +
-                            " OUTPUT_DIR" + (quick ? " [--quick]" : "");
+  const char* prog = argc > 0 ? argv[0] : "lesson";
+  const std::string usage =
+      std::string("usage: ") + prog + " OUTPUT_DIR" + (quick ? " [--quick]" : "");
   std::filesystem::path out;
   if (quick) *quick = false;
   for (int i = 1; i < argc; ++i) {
@@ -29,10 +30,10 @@ inline std::filesystem::path output_dir(int argc, char** argv, bool* quick = nul
     if (quick && a == "--quick") {
       *quick = true;
     } else if (!a.empty() && a[0] == '-') {
-      std::fprintf(stderr, "%s: unknown option '%s' (%s)\n", argv[0], a.c_str(), usage.c_str());
+      std::fprintf(stderr, "%s: unknown option '%s' (%s)\n", prog, a.c_str(), usage.c_str());
       std::exit(2);
     } else if (!out.empty()) {
-      std::fprintf(stderr, "%s: one output folder only, '%s' and '%s' given (%s)\n", argv[0],
+      std::fprintf(stderr, "%s: one output folder only, '%s' and '%s' given (%s)\n", prog,
                    out.string().c_str(), a.c_str(), usage.c_str());
       std::exit(2);
     } else {
@@ -46,7 +47,7 @@ inline std::filesystem::path output_dir(int argc, char** argv, bool* quick = nul
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec || !std::filesystem::is_directory(out)) {
-    std::fprintf(stderr, "%s: cannot use '%s' as the output folder (%s)\n", argv[0],
+    std::fprintf(stderr, "%s: cannot use '%s' as the output folder (%s)\n", prog,
                  out.string().c_str(), ec ? ec.message().c_str() : "not a folder");
     std::exit(2);
   }
