@@ -273,6 +273,9 @@ dampers. Integrators (--integrator, rk4 when absent):
   implicit-midpoint  implicit midpoint, order 2, A-stable (stiff springs), --dt
   esdirk4            ESDIRK4(3)6L[2]SA, order 4, L-stable, adaptive, --tol (stiff springs;
                      Newton failures shrink the step)
+  radau5             Radau IIA, 3 stages, order 5, L-stable, adaptive, --tol (stiff springs
+                     at tight tolerances: global error near --tol; Newton failures shrink
+                     the step)
   variational        implicit midpoint in (theta, p = M beta), order 2, symplectic, --dt
                      (revolute, prismatic, helical and universal hinges only)
 Fixed steps divide [0, T] evenly. Spherical and free hinges move on the unit quaternions

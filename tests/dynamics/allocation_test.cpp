@@ -97,6 +97,22 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
     EXPECT_EQ(allocations([&] { ok = stepper.esdirk(0.0, h *= 1.1, x0, x1, err) && ok; }), 0)
         << "esdirk, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
+    // radau5: steps that follow each other (the last step's polynomial starts Newton), a
+    // retried start, a new step size each time
+    soa::Stepper radau(sys);
+    soa::State xa = x0, xb = x0;
+    double t = 0, hr = 1e-3;
+    EXPECT_EQ(allocations([&] {
+                for (int k = 0; k < 3; ++k) {
+                  ok = radau.radau5(t, hr, xa, xb, err) && ok;
+                  ok = radau.radau5(t, hr * 0.5, xa, xb, err) && ok;  // retried smaller
+                  t += hr * 0.5, hr *= 1.3;
+                  xa = xb;
+                }
+              }),
+              0)
+        << "radau5, case " << i;
+    EXPECT_TRUE(ok) << "case " << i;
     soa::Stepper midpoint(sys);
     EXPECT_EQ(allocations([&] { ok = midpoint.implicit_midpoint(0.0, 1e-3, x0, x1) && ok; }), 0)
         << "implicit_midpoint, case " << i;

@@ -95,6 +95,12 @@ inline cplx stability_function(Integrator m, cplx z) {
           M(i, j) = (i == j ? 1.0 : 0.0) - z * soa::Esdirk436::a[std::size_t(i)][std::size_t(j)];
       return M.partialPivLu().solve(Eigen::Matrix<cplx, 6, 1>::Ones())[5];
     }
+    case Integrator::Radau5: {  // stiffly accurate: R(z) = Y_3, (I - zA) Y = 1
+      const soa::RadauIIA<double>& R = soa::RadauIIA<double>::get();
+      const Eigen::Matrix<cplx, 3, 3> M =
+          Eigen::Matrix<cplx, 3, 3>::Identity() - z * R.A.cast<cplx>();
+      return M.partialPivLu().solve(Eigen::Matrix<cplx, 3, 1>::Ones())[2];
+    }
     case Integrator::SymplecticEuler:
       break;  // not a Runge-Kutta method of y' = Ay: see amplification_radius()
     case Integrator::Variational:

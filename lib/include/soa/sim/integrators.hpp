@@ -2,9 +2,11 @@
 /// One step of each integrator of the simulation, on the chain's configuration manifold.
 #pragma once
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,9 @@ enum class Integrator {
   ImplicitMidpoint,  ///< implicit midpoint (1-stage Gauss), order 2, A-stable, symmetric
   /// ESDIRK4(3)6L[2]SA, adaptive step, order 4 (embedded 3), L-stable: for stiff springs
   Esdirk,
+  /// Radau IIA (three stages), adaptive step, order 5 (embedded 3), L-stable: stiff springs
+  /// at tight tolerances
+  Radau5,
   /// implicit midpoint in the canonical variables \f$(\theta, p = \mathcal M\beta)\f$, order 2,
   /// symplectic and symmetric (hinges whose coordinates add)
   Variational,
@@ -28,10 +33,10 @@ enum class Integrator {
 
 /// The methods that choose their own step from a tolerance (`--tol`).
 inline bool is_adaptive(Integrator i) {
-  return i == Integrator::DormandPrince || i == Integrator::Esdirk;
+  return i == Integrator::DormandPrince || i == Integrator::Esdirk || i == Integrator::Radau5;
 }
 
-/// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint", "esdirk4",
+/// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint", "esdirk4", "radau5",
 /// "variational".
 inline const char* integrator_name(Integrator i) {
   switch (i) {
@@ -47,6 +52,8 @@ inline const char* integrator_name(Integrator i) {
       return "implicit-midpoint";
     case Integrator::Esdirk:
       return "esdirk4";
+    case Integrator::Radau5:
+      return "radau5";
     case Integrator::Variational:
       return "variational";
   }
@@ -55,12 +62,13 @@ inline const char* integrator_name(Integrator i) {
 
 /// The integrator called \p name; throws soa::Error listing the names.
 inline Integrator integrator_from_name(const std::string& name) {
-  for (Integrator i :
-       {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4, Integrator::DormandPrince,
-        Integrator::ImplicitMidpoint, Integrator::Esdirk, Integrator::Variational})
+  for (Integrator i : {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4,
+                       Integrator::DormandPrince, Integrator::ImplicitMidpoint, Integrator::Esdirk,
+                       Integrator::Radau5, Integrator::Variational})
     if (name == integrator_name(i)) return i;
   throw Error("unknown integrator \"" + name +
-              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint, esdirk4, variational)");
+              "\" (euler, symplectic-euler, rk4, dopri5, implicit-midpoint, esdirk4, radau5, "
+              "variational)");
 }
 
 /// The order of convergence of each integrator.
@@ -72,6 +80,7 @@ inline int integrator_order(Integrator i) {
     case Integrator::RK4:
       return 4;
     case Integrator::DormandPrince:
+    case Integrator::Radau5:
       return 5;
     case Integrator::ImplicitMidpoint:
     case Integrator::Variational:
@@ -85,7 +94,9 @@ inline int integrator_order(Integrator i) {
 /// The order of an adaptive method's embedded error estimate (0 for fixed-step methods): the
 /// local error estimate is \f$O(h^{q+1})\f$, and the step control uses \f$e^{-1/(q+1)}\f$.
 inline int embedded_order(Integrator i) {
-  return i == Integrator::DormandPrince ? 4 : i == Integrator::Esdirk ? 3 : 0;
+  return i == Integrator::DormandPrince                       ? 4
+         : i == Integrator::Esdirk || i == Integrator::Radau5 ? 3
+                                                              : 0;
 }
 
 /// The Butcher tableau of ESDIRK4(3)6L[2]SA (Kennedy and Carpenter, Appl. Numer. Math. 44,
@@ -107,6 +118,64 @@ struct Esdirk436 {
   static constexpr std::array<double, 6> e{31666707.0 / 9881966720, 0,
                                            -256875.0 / 105007616,   -2768025.0 / 128864768,
                                            169839.0 / 3864644,      -5247.0 / 225920};
+};
+
+/// Radau IIA with three stages (Hairer and Wanner, Solving ODEs II, IV.5 and IV.8), derived
+/// here rather than copied: the nodes \f$c_{1,2} = (4 \mp \sqrt6)/10\f$, \f$c_3 = 1\f$; the
+/// matrix \f$A\f$ from the collocation conditions \f$\sum_j a_{ij} c_j^{k-1} = c_i^k/k\f$,
+/// k = 1, 2, 3; a real \f$T\f$ with \f$T^{-1}A^{-1}T = \begin{pmatrix}\gamma & 0 & 0\\ 0 &
+/// \alpha & \beta\\ 0 & -\beta & \alpha\end{pmatrix}\f$ (the eigenvalues of \f$A^{-1}\f$,
+/// \f$\gamma\f$ real and \f$\alpha \pm i\beta\f$), which splits the simplified Newton system
+/// of the \f$3n\f$ stage unknowns into one real and one complex system of size n; and the
+/// embedded order-3 error weights: \f$\hat y_1 - y_1 = \gamma_0 h f(y_0) + \sum_k e_k Z_k\f$,
+/// \f$\gamma_0 = 1/\gamma\f$, \f$e = (\hat b - b)^* A^{-1}\f$ with \f$\hat b\f$ from the
+/// order conditions \f$\gamma_0 + \sum_i \hat b_i c_i^{k-1} = 1/k\f$ (k = 1: \f$\gamma_0 +
+/// \sum\hat b_i = 1\f$). Tested against the order conditions and the block form.
+template <class S>
+struct RadauIIA {
+  static constexpr int s = 3;
+  Eigen::Matrix<S, 3, 3> A, T, T_inv, Lambda;
+  Eigen::Matrix<S, 3, 1> c, b, e;
+  S gamma, alpha, beta;  ///< the eigenvalues of \f$A^{-1}\f$: \f$\gamma\f$, \f$\alpha \pm i\beta\f$
+
+  static const RadauIIA& get() {
+    static const RadauIIA r;
+    return r;
+  }
+
+ private:
+  RadauIIA() {
+    using M3 = Eigen::Matrix<S, 3, 3>;
+    const S r6 = std::sqrt(S(6));
+    c << (S(4) - r6) / S(10), (S(4) + r6) / S(10), S(1);
+    M3 V, C;  // V(j, k) = c_j^k, C(i, k) = c_i^(k+1) / (k+1)
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) {
+        V(i, k) = std::pow(c[i], S(k));
+        C(i, k) = std::pow(c[i], S(k + 1)) / S(k + 1);
+      }
+    A = C * V.inverse();  // A V = C
+    b = A.row(2).transpose();
+    const M3 A_inv = A.inverse();
+    Eigen::EigenSolver<M3> es(A_inv);
+    int ir = 0;  // the real eigenvalue
+    for (int i = 1; i < 3; ++i)
+      if (std::abs(es.eigenvalues()[i].imag()) < std::abs(es.eigenvalues()[ir].imag())) ir = i;
+    const int ic = ir == 0 ? 1 : 0;
+    const Eigen::Matrix<std::complex<S>, 3, 1> vc = es.eigenvectors().col(ic);
+    T.col(0) = es.eigenvectors().col(ir).real();
+    T.col(1) = vc.real();
+    T.col(2) = vc.imag();
+    T_inv = T.inverse();
+    Lambda = T_inv * A_inv * T;
+    gamma = Lambda(0, 0);
+    alpha = Lambda(1, 1);
+    beta = Lambda(1, 2);
+    const S gamma0 = S(1) / gamma;
+    Eigen::Matrix<S, 3, 1> rhs(S(1) - gamma0, S(1) / S(2), S(1) / S(3));
+    const Eigen::Matrix<S, 3, 1> b_hat = V.transpose().inverse() * rhs;  // sum_i b_i c_i^k
+    e = A_inv.transpose() * (b_hat - b);
+  }
 };
 
 /// Throws soa::Error (one line, naming the body and its hinge) unless every hinge of \p m
@@ -392,7 +461,179 @@ class StepperT {
     return true;
   }
 
+  /// Radau IIA of order 5 (RadauIIA; Hairer and Wanner, Solving ODEs II, IV.8): the stages
+  /// \f$Z_i = h\sum_j a_{ij} F(Z_j)\f$ at \f$c_i h\f$, solved together by simplified Newton
+  /// with \f$I - hA\otimes J\f$, which \f$T\f$ splits into \f$\gamma/h - J\f$ (real) and
+  /// \f$(\alpha - i\beta)/h - J\f$ (complex), each of size \f$2n_v\f$: three rate evaluations
+  /// and two solves an iteration. Newton starts from the last step's collocation polynomial
+  /// extrapolated, and stops when \f$\eta\,|\Delta W| \le \kappa\f$ in the tolerance's
+  /// norm, \f$\eta = \theta/(1 - \theta)\f$ from this step's contraction \f$\theta\f$ (the
+  /// last step's \f$\eta^{0.8}\f$ at the first iteration), \f$\kappa = 3\cdot10^{-5}\f$ (at
+  /// least \f$10\varepsilon/\mathrm{tol}\f$): Newton's error enters \f$y_1\f$ unfiltered at
+  /// every step, and RADAU5's 0.03 left the stiff chain's (k = 1e8) global error 120-2100
+  /// times the tolerance, against 0.1-3 times at 3e-5 for 10-30 % more evaluations. \f$J\f$
+  /// as in esdirk(), refreshed when \f$\theta > 0.1\f$ or Newton fails; the matrices
+  /// factorized again when h changes. Stiffly accurate: \f$y_1 = y_0 + Z_3\f$. \p err gets
+  /// the embedded order-3 estimate filtered by \f$(\gamma/h - J)^{-1}\f$, and on a first or
+  /// retried step whose estimate exceeds the tolerance, the same evaluated once more at
+  /// \f$y_0 + \mathrm{err}\f$ (ibid., (8.20)). Returns false when Newton fails with a fresh
+  /// Jacobian (newton_failure()): the caller takes a smaller step. Allocates nothing once
+  /// sized.
+  bool radau5(S t, S h, const StateT<S>& x0, StateT<S>& x1, VecX<S>& err) {
+    const RadauIIA<S>& R = RadauIIA<S>::get();
+    const int n2 = 2 * nv_;
+    size_workspace();
+    for (int i = 0; i < nv_; ++i) {
+      scale_[i] = tol_;
+      scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
+    }
+    // The collocation polynomial of the last accepted step: the last call's, when this step
+    // starts where it ended; kept when this call retries the same start.
+    const bool retry = t == rt_call_;
+    if (t == rt_cand_ + rh_cand_) {
+      std::swap(Zprev_, Zcand_);
+      rt_prev_ = rt_cand_, rh_prev_ = rh_cand_;
+      rt_cand_ = std::numeric_limits<S>::quiet_NaN();
+    } else if (!(t == rt_prev_ + rh_prev_)) {
+      rt_prev_ = std::numeric_limits<S>::quiet_NaN();
+    }
+    const bool first = !(t == rt_prev_ + rh_prev_) && !retry;
+    rt_call_ = t;
+    Zs_[0].setZero();
+    rate_at(t, x0, Zs_[0], Fs_[0]);  // f(y0): the error estimate and the Jacobian
+    bool fresh = false;
+    if (!jac_valid_ || refresh_) {
+      jacobian(t, x0);
+      fresh = true;
+    }
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      if (!(rlu_h_ == h) || fresh_lu_needed_) factorize_radau(h);
+      radau_start(h);
+      if (radau_newton(t, h, x0)) break;
+      if (fresh) return false;  // a fresh Jacobian did not help: a smaller step
+      jacobian(t, x0);
+      fresh = true;
+    }
+    rt_cand_ = t, rh_cand_ = h;
+    for (int i = 0; i < 3; ++i) Zcand_[std::size_t(i)] = Zs_[std::size_t(3 + i)];
+    u_ = Zs_[5].head(nv_);
+    x1.beta = x0.beta + Zs_[5].tail(nv_);
+    finish(x0.theta, x1);
+    // err = (gamma/h - J)^{-1} (f(y0) + (gamma/h) sum_k e_k Z_k)
+    base_.setZero();
+    for (int k = 0; k < 3; ++k) base_ += (R.gamma * R.e[k] / h) * Zs_[std::size_t(3 + k)];
+    r_ = Fs_[0] + base_;
+    err.resize(n2);
+    err = lu_.solve(r_);
+    if ((first || retry) && scaled_norm(err) > S(1)) {
+      rate_at(t, x0, err, Fp_);
+      r_ = Fp_ + base_;
+      err = lu_.solve(r_);
+    }
+    return true;
+  }
+
  private:
+  // LU of gamma/h - J (real, lu_) and (alpha - i beta)/h - J (complex, clu_).
+  void factorize_radau(S h) {
+    const RadauIIA<S>& R = RadauIIA<S>::get();
+    A_ = -J_;
+    A_.diagonal().array() += R.gamma / h;
+    lu_.compute(A_);
+    CA_ = -J_.template cast<std::complex<S>>();
+    CA_.diagonal().array() += std::complex<S>(R.alpha, -R.beta) / h;
+    clu_.compute(CA_);
+    rlu_h_ = h;
+    lu_hg_ = S(0);  // lu_ is not esdirk()'s matrix
+    fresh_lu_needed_ = false;
+    ++factorizations_;
+  }
+  // Z_i (Zs_[3 + i]) from the last step's collocation polynomial P through (0, 0), (c_k, Z_k)
+  // in units of its step, at 1 + c_i h / h_prev, less P(1); zero on a first step.
+  void radau_start(S h) {
+    const RadauIIA<S>& R = RadauIIA<S>::get();
+    const bool have = rt_prev_ == rt_prev_;  // not NaN
+    for (int i = 0; i < 3; ++i) {
+      VecX<S>& Z = Zs_[std::size_t(3 + i)];
+      Z.setZero();
+      if (!have) continue;
+      const S x = S(1) + R.c[i] * h / rh_prev_;
+      for (int k = 0; k < 3; ++k) {
+        S w = (x - S(0)) / (R.c[k] - S(0));  // node 0 (value 0) and the other two
+        for (int m = 0; m < 3; ++m)
+          if (m != k) w *= (x - R.c[m]) / (R.c[k] - R.c[m]);
+        if (k == 2) w -= S(1);
+        Z += w * Zprev_[std::size_t(k)];
+      }
+    }
+  }
+  // Simplified Newton on the transformed stages W = T^{-1} Z (Zs_[3..5] hold Z).
+  bool radau_newton(S t, S h, const StateT<S>& x0) {
+    const RadauIIA<S>& R = RadauIIA<S>::get();
+    // Newton's error enters y_1 unfiltered, step after step: kappa = 3e-5 keeps the global
+    // error near the tolerance (0.03, Hairer's RADAU5, left it 120-2100 x tol on the stiff
+    // chain, k = 1e8), and above rounding (10 eps / tol)
+    const S kappa = std::max(S(3e-5), S(10) * eps<S>() / tol_);
+    for (int i = 0; i < 3; ++i) {
+      Ws_[std::size_t(i)].setZero();
+      for (int k = 0; k < 3; ++k) Ws_[std::size_t(i)] += R.T_inv(i, k) * Zs_[std::size_t(3 + k)];
+    }
+    S last = S(0), theta = S(0);
+    S eta = std::pow(std::max(eta_, eps<S>()), S(0.8));
+    for (int it = 0; it < 7; ++it) {
+      for (int i = 0; i < 3; ++i)
+        rate_at(t + R.c[i] * h, x0, Zs_[std::size_t(3 + i)], Fs_[std::size_t(1 + i)]);
+      // G = T^{-1} F, then the right-hand sides of the two systems
+      for (int i = 0; i < 3; ++i) {
+        VecX<S>& G = Gs_[std::size_t(i)];
+        G = R.T_inv(i, 0) * Fs_[1] + R.T_inv(i, 1) * Fs_[2] + R.T_inv(i, 2) * Fs_[3];
+      }
+      r_ = Gs_[0] - (R.gamma / h) * Ws_[0];
+      dZ_ = lu_.solve(r_);
+      cr_.real() = Gs_[1] - (R.alpha * Ws_[1] + R.beta * Ws_[2]) / h;
+      cr_.imag() = Gs_[2] - (R.alpha * Ws_[2] - R.beta * Ws_[1]) / h;
+      cu_ = clu_.solve(cr_);
+      const S size = std::sqrt(((dZ_.array() / scale_.array()).square().sum() +
+                                (cu_.real().array() / scale_.array()).square().sum() +
+                                (cu_.imag().array() / scale_.array()).square().sum()) /
+                               S(3 * 2 * nv_));
+      if (!std::isfinite(double(size))) {
+        failure_ = {1, size, true, S(0)};
+        refresh_ = true;
+        return false;
+      }
+      if (it > 0) {
+        theta = size / last;
+        if (theta >= S(0.99)) {
+          failure_ = {1, size, true, S(0)};
+          refresh_ = true;
+          return false;
+        }
+        eta = theta / (S(1) - theta);
+        // the distance left after the remaining iterations: too far, give up now
+        if (eta * size * std::pow(theta, S(6 - it)) > kappa) {
+          failure_ = {1, size, false, S(0)};
+          refresh_ = true;
+          return false;
+        }
+      }
+      Ws_[0] += dZ_;
+      Ws_[1] += cu_.real();
+      Ws_[2] += cu_.imag();
+      for (int i = 0; i < 3; ++i)
+        Zs_[std::size_t(3 + i)] = R.T(i, 0) * Ws_[0] + R.T(i, 1) * Ws_[1] + R.T(i, 2) * Ws_[2];
+      if (eta * size <= kappa) {
+        eta_ = eta;
+        if (theta > S(0.1)) refresh_ = true;  // slow: a new Jacobian next step
+        return true;
+      }
+      last = std::max(size, eps<S>());
+    }
+    failure_ = {1, last, false, S(0)};
+    refresh_ = true;
+    return false;
+  }
+
   // The midpoint equation Z = h F(Z/2) for the rate(offset, F) of an offset from the step's
   // start: J = I - (h/2) dF/dZ at Z = 0 by forward differences, then simplified Newton,
   // stopped when the estimated distance to the solution, theta/(1 - theta) |dZ| with theta
@@ -527,6 +768,14 @@ class StepperT {
     J_.setZero(n2, n2);
     A_.setZero(n2, n2);
     lu_ = Eigen::PartialPivLU<MatX<S>>(n2);
+    Zprev_.assign(3, VecX<S>::Zero(n2));
+    Zcand_.assign(3, VecX<S>::Zero(n2));
+    Ws_.assign(3, VecX<S>::Zero(n2));
+    Gs_.assign(3, VecX<S>::Zero(n2));
+    CA_.setZero(n2, n2);
+    clu_ = Eigen::PartialPivLU<MatX<std::complex<S>>>(n2);
+    cr_.setZero(n2);
+    cu_.setZero(n2);
     jac_valid_ = false;
   }
   // J = dF/dZ at Z = 0 around x0 by forward differences, column by column (2 n_v rates).
@@ -551,6 +800,7 @@ class StepperT {
     A_.diagonal().array() += S(1);
     lu_.compute(A_);
     lu_hg_ = hg;
+    rlu_h_ = S(0);  // lu_ is not radau5()'s matrix
     fresh_lu_needed_ = false;
     ++factorizations_;
   }
@@ -621,6 +871,15 @@ class StepperT {
   Eigen::PartialPivLU<MatX<S>> lu_;
   S lu_hg_ = S(0), tol_ = S(1e-6);  // the h gamma of lu_
   bool jac_valid_ = false, refresh_ = false, fresh_lu_needed_ = true;
+  // radau5(): transformed stages, the last steps' stages, complex factorization
+  std::vector<VecX<S>> Ws_, Gs_, Zprev_, Zcand_;
+  MatX<std::complex<S>> CA_;
+  Eigen::PartialPivLU<MatX<std::complex<S>>> clu_;
+  Eigen::Matrix<std::complex<S>, Eigen::Dynamic, 1> cr_, cu_;
+  S rlu_h_ = S(0), eta_ = S(1);
+  S rt_prev_ = std::numeric_limits<S>::quiet_NaN(), rh_prev_ = S(0);
+  S rt_cand_ = std::numeric_limits<S>::quiet_NaN(), rh_cand_ = S(0);
+  S rt_call_ = std::numeric_limits<S>::quiet_NaN();
   long jacobians_ = 0, factorizations_ = 0, continuations_ = 0;
   NewtonFailure failure_;
 };

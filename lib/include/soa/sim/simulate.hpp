@@ -17,7 +17,7 @@ template <class S>
 struct SimulationOptionsT {
   Integrator method = Integrator::RK4;
   S dt = S(0);     ///< fixed step (every method but dopri5); dopri5's first step if set
-  S tol = S(0);    ///< dopri5, esdirk4: relative and absolute tolerance of the local error
+  S tol = S(0);    ///< dopri5, esdirk4, radau5: tolerance of the local error
   S t_end = S(1);  ///< integrate over [0, t_end]
   /// A run whose \f$\|\beta\|_\infty\f$ exceeds this factor times \f$\max(1,
   /// \|\beta_0\|_\infty)\f$, or whose state is not finite, has blown up.
@@ -43,9 +43,9 @@ using SimulationOptions = SimulationOptionsT<double>;
 /// What a run did.
 struct SimulationSummary {
   long steps = 0;               ///< accepted steps
-  long rejected = 0;            ///< rejected steps (dopri5, esdirk4), Newton failures included
-  long newton_failures = 0;     ///< esdirk4: steps retried smaller because Newton failed
-  long jacobians = 0;           ///< esdirk4: Jacobians computed (2 n_v evaluations each)
+  long rejected = 0;            ///< rejected steps (adaptive methods), Newton failures included
+  long newton_failures = 0;     ///< esdirk4, radau5: steps retried smaller after Newton failed
+  long jacobians = 0;           ///< esdirk4, radau5: Jacobians (2 n_v evaluations each)
   long evaluations = 0;         ///< forward dynamics calls
   double wall_seconds = 0;      ///< wall time of the loop
   double energy0 = 0;           ///< energy at t = 0
@@ -175,6 +175,9 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
         case Integrator::Esdirk:
           ok = stepper.esdirk(t, h, x, x1, err);
           break;
+        case Integrator::Radau5:
+          ok = stepper.radau5(t, h, x, x1, err);
+          break;
         case Integrator::Variational:
           ok = stepper.variational(t, h, x, x1);
           break;
@@ -184,10 +187,10 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       if (msg.find("singular") != std::string::npos) throw;
       blow_up(msg, h);
     }
-    if (!ok && opt.method == Integrator::Esdirk) {  // a smaller step
+    if (!ok && (opt.method == Integrator::Esdirk || opt.method == Integrator::Radau5)) {
       ++sum.rejected;
       ++sum.newton_failures;
-      h *= S(0.25);
+      h *= opt.method == Integrator::Radau5 ? S(0.5) : S(0.25);  // a smaller step
       if (h < S(16) * eps<S>() * std::max(S(1), t)) {
         const auto& f = stepper.newton_failure();
         char what[200];
@@ -231,10 +234,12 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       }
       if (!std::isfinite(double(e))) blow_up("the error estimate is not finite", h);
       t += h;
-      // esdirk4 keeps its step (and so its LU factorization of I - h gamma J, O(n_v^3)) when
+      // esdirk4 and radau5 keep their step (and so their LU factorizations, O(n_v^3)) when
       // the controller would grow it by less than 20 % (as RADAU5: Hairer and Wanner, Solving
       // ODEs II, IV.8).
-      if (!(opt.method == Integrator::Esdirk && factor >= S(1) && factor <= S(1.2))) h *= factor;
+      if (!((opt.method == Integrator::Esdirk || opt.method == Integrator::Radau5) &&
+            factor >= S(1) && factor <= S(1.2)))
+        h *= factor;
     } else {
       t = S(sum.steps + 1) * h;
     }

@@ -82,6 +82,9 @@ inline const char* stability_note(Integrator i) {
     case Integrator::Esdirk:
       return "esdirk4 is L-stable at any step and shrinks it when Newton fails: a blow-up here "
              "is in the motion itself, or the tolerance is too loose (--tol)";
+    case Integrator::Radau5:
+      return "radau5 is L-stable at any step and shrinks it when Newton fails: a blow-up here "
+             "is in the motion itself, or the tolerance is too loose (--tol)";
     case Integrator::Variational:
       return "the variational integrator is implicit; Newton's method needs a smaller --dt";
   }
