@@ -471,7 +471,7 @@ class StepperT {
   /// last step's \f$\eta^{0.8}\f$ at the first iteration), \f$\kappa = 3\cdot10^{-5}\f$ (at
   /// least \f$10\varepsilon/\mathrm{tol}\f$): Newton's error enters \f$y_1\f$ unfiltered at
   /// every step, and RADAU5's 0.03 left the stiff chain's (k = 1e8) global error 120-2100
-  /// times the tolerance, against 0.1-3 times at 3e-5 for 10-30 % more evaluations. \f$J\f$
+  /// times the tolerance, against 0.1-3 times at 3e-5 for 20-42 % more evaluations. \f$J\f$
   /// as in esdirk(), refreshed when \f$\theta > 0.1\f$ or Newton fails; the matrices
   /// factorized again when h changes. Stiffly accurate: \f$y_1 = y_0 + Z_3\f$. \p err gets
   /// the embedded order-3 estimate filtered by \f$(\gamma/h - J)^{-1}\f$, and on a first or
