@@ -121,15 +121,17 @@ inline std::vector<ExtremeCase> extreme_cases(bool quick) {
 }
 
 /// Implicit midpoint and the variational integrator form their Jacobian by 2 nv forward
-/// dynamics per step and factor it (\f$O(n^3)\f$): run up to this many links only. esdirk4 keeps its Jacobian across steps
-/// and runs on every case.
+/// dynamics per step and factor it (\f$O(n^3)\f$), and radau5 factors a real and a complex
+/// matrix of size 2 nv whenever its step changes: run up to this many links only. esdirk4
+/// keeps its Jacobian across steps and runs on every case.
 constexpr int kImplicitMaxN = 100;
 
-/// The integrators of the extreme cases: the report's five, esdirk4 and the variational
-/// integrator.
+/// The integrators of the extreme cases: the report's five, esdirk4, radau5 and the
+/// variational integrator.
 inline std::vector<Integrator> extreme_methods() {
   std::vector<Integrator> m(kMethods.begin(), kMethods.end());
   m.push_back(Integrator::Esdirk);
+  m.push_back(Integrator::Radau5);
   m.push_back(Integrator::Variational);
   return m;
 }
@@ -280,7 +282,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
     for (const Integrator method : extreme_methods()) {
       ExtremeRun e;
       e.method = method;
-      if ((method == Integrator::ImplicitMidpoint || method == Integrator::Variational) &&
+      if ((method == Integrator::ImplicitMidpoint || method == Integrator::Variational ||
+           method == Integrator::Radau5) &&
           p.m.n() > kImplicitMaxN) {
         res.runs.push_back(e);
         continue;
@@ -307,8 +310,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       // The accurate methods on the runs that finish: RK4's global error on
       // \f$\dot y = \lambda y\f$ is \f$t\,\lambda(h\lambda)^4/120\f$ per unit state
       // (checked where \f$h\lambda \le 0.5\f$, the asymptotic regime); dopri5 keeps each
-      // step's local error below tol, so after N steps the error is about N tol (esdirk4
-      // likewise, its error estimate of order 3 filtered for stiff modes). RK4 is
+      // step's local error below tol, so after N steps the error is about N tol (esdirk4 and
+      // radau5 likewise, their error estimates of order 3 filtered for stiff modes). RK4 is
       // allowed a factor 100 (the nonlinear chain is not \f$\dot y = \lambda y\f$: the
       // whipping chain at 100 rad/s reaches 8 times the linear estimate; one order less would
       // be 1/(h lambda) = 60 times more), dopri5 a factor 10. Neither can beat the rounding
@@ -420,7 +423,7 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
   md << "Extreme chains of lesson 6 simulated over " << num(t_end, "%g")
      << " s from rest (straight) or with random rates (bent), no hinge forces, gravity in "
         "the plane of motion. Fixed steps 1 ms (10 µs at 100 rad/s, 0.1 ms on the 1000-link "
-        "chain), dopri5 and esdirk4 at tolerance "
+        "chain), dopri5, esdirk4 and radau5 at tolerance "
      << num(tol, "%.0e")
      << ". The explicit fixed-step methods run with soa::simulate's stiffness monitor "
         "(h lambda by power iteration at the start, every 100 steps, 25 for rk4, and at the "
@@ -482,17 +485,22 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
       "lambda, Newton failure)",
       summary.extreme_outcomes.count(outcome_name(Outcome::Other)) == 0);
   {
-    // esdirk4 finishes every case that is not physically singular.
-    int esdirk_unfinished = 0;
-    for (const ExtremeResult& res : results)
-      for (const ExtremeRun& e : res.runs)
-        if (e.method == Integrator::Esdirk &&
-            outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Finished &&
-            outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Singular)
-          ++esdirk_unfinished;
-    checks.check("esdirk4 finishes every case that is not physically singular (" +
-                     std::to_string(esdirk_unfinished) + " not)",
-                 esdirk_unfinished == 0);
+    // esdirk4 finishes every case that is not physically singular, radau5 every one it runs.
+    for (const Integrator m : {Integrator::Esdirk, Integrator::Radau5}) {
+      int unfinished = 0, ran = 0;
+      for (const ExtremeResult& res : results)
+        for (const ExtremeRun& e : res.runs) {
+          if (e.method != m || !e.ran) continue;
+          ++ran;
+          if (outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Finished &&
+              outcome(e.ran, e.r.ok, e.r.diagnostic) != Outcome::Singular)
+            ++unfinished;
+        }
+      checks.check(std::string(soa::integrator_name(m)) +
+                       " finishes every case that is not physically singular (" +
+                       std::to_string(unfinished) + " of " + std::to_string(ran) + " runs not)",
+                   unfinished == 0);
+    }
   }
   checks.check("massless tip: every method stops with 'singular D' naming the tip b1 (" +
                    std::to_string(refused_named) + " of " + std::to_string(refused) + ")",
@@ -504,7 +512,8 @@ inline void extreme_section(Checklist& checks, const std::filesystem::path& out,
   checks.check("reference: dopri5 1e-13 and RK4 agree on every case not refused (worst)",
                worst_agreement, 1e-8);
   checks.check(
-      "rk4 (h lambda <= 0.5), dopri5 and esdirk4 within their error bounds (worst error / "
+      "rk4 (h lambda <= 0.5), dopri5, esdirk4 and radau5 within their error bounds (worst "
+      "error / "
       "threshold, " +
           std::to_string(accurate_checked) + " runs)",
       worst_ratio, 1.0);

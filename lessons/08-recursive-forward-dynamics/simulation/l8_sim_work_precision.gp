@@ -1,6 +1,6 @@
 # Simulation report, section 1: final-state error against wall time, one figure per scene,
 # one curve per integrator (the fitted order in its title, from l8_sim_orders.gp), esdirk4,
-# the variational integrator and SUNDIALS CVODE with their own line styles (CVODE's fitted slope is not an order: BDF 1-5).
+# radau5, the variational integrator and SUNDIALS CVODE with their own line styles (CVODE's fitted slope is not an order: BDF 1-5).
 # Usage: gnuplot -e "outdir='DIR'" l8_sim_work_precision.gp  (reads DIR/l8_sim_work_precision.csv)
 set terminal pngcairo size 760,540 enhanced font 'DejaVu Sans,11'
 set datafile separator ','
@@ -25,6 +25,8 @@ do for [s in 'double_pendulum arm7 chain50 stiff_chain'] {
        title sprintf('%s (order %s, expected %s)', word(methods, i), otext(s, i), word(expected, i)), \
        file using 7:(e(s, 'esdirk4')) with linespoints lw 3 pt 5 lc rgb '#d62728' \
        title sprintf('esdirk4 (slope %s, expected 4)', otext(s, 'esdirk4')), \
+       file using 7:(e(s, 'radau5')) with linespoints lw 3 pt 4 lc rgb '#1f3a93' \
+       title sprintf('radau5 (slope %s, expected 5)', otext(s, 'radau5')), \
        file using 7:(e(s, 'variational')) with linespoints lw 2 pt 13 lc rgb '#9467bd' \
        title sprintf('variational (order %s, expected 2)', otext(s, 'variational')), \
        file using 7:(e(s, 'cvode')) with linespoints lw 3 pt 9 dt 2 lc rgb '#000000' \

@@ -16,11 +16,13 @@ file = outdir.'/l8_sim_wp_stiff_own.csv'
 e(m) = (strcol(2) eq m && $8 > 0 && $7 > 0) ? $8 : 1/0
 label(m) = m eq 'cvode' ? 'CVODE (SUNDIALS BDF)' : \
            (m eq 'esdirk4' ? 'esdirk4 (L-stable, adaptive)' : \
-           (m eq 'dopri5' || m eq 'implicit-midpoint' ? m : m.' (from its stability bound down)'))
-# gnuplot's default colours for the methods of kMethods; esdirk4 and CVODE their own.
+           (m eq 'radau5' ? 'radau5 (Radau IIA, L-stable, adaptive)' : \
+           (m eq 'dopri5' || m eq 'implicit-midpoint' ? m : m.' (from its stability bound down)')))
+# gnuplot's default colours for the methods of kMethods; esdirk4, radau5 and CVODE their own.
 palette = '#9400d3 #009e73 #56b4e9 #e69f00 #f0e442 #0072b2 #e51e10 #808080'
-colour(m, i) = m eq 'cvode' ? '#000000' : (m eq 'esdirk4' ? '#d62728' : word(palette, i))
-own(m) = m eq 'cvode' || m eq 'esdirk4'
+colour(m, i) = m eq 'cvode' ? '#000000' : (m eq 'esdirk4' ? '#d62728' : \
+               (m eq 'radau5' ? '#1f3a93' : word(palette, i)))
+own(m) = m eq 'cvode' || m eq 'esdirk4' || m eq 'radau5'
 dashes(m) = m eq 'cvode' ? 2 : 1
 set output outdir.'/l8_sim_wp_stiff_own.png'
 set title title_text noenhanced
