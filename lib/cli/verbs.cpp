@@ -464,7 +464,7 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
     }
     w.member("steps", sum.steps);
     w.member("rejected_steps", sum.rejected);
-    if (opt.method == Integrator::Esdirk || opt.method == Integrator::Radau5) {
+    if (soa::is_adaptive_implicit(opt.method)) {
       w.member("newton_failures", sum.newton_failures);
       w.member("jacobians", sum.jacobians);
     }

@@ -36,6 +36,12 @@ inline bool is_adaptive(Integrator i) {
   return i == Integrator::DormandPrince || i == Integrator::Esdirk || i == Integrator::Radau5;
 }
 
+/// The adaptive implicit methods (esdirk4, radau5): Newton with a kept Jacobian, a step
+/// retried smaller when Newton fails.
+inline bool is_adaptive_implicit(Integrator i) {
+  return i == Integrator::Esdirk || i == Integrator::Radau5;
+}
+
 /// "euler", "symplectic-euler", "rk4", "dopri5", "implicit-midpoint", "esdirk4", "radau5",
 /// "variational".
 inline const char* integrator_name(Integrator i) {
@@ -412,10 +418,7 @@ class StepperT {
     const auto& c = Esdirk436::c;
     const auto& e = Esdirk436::e;
     size_workspace();
-    for (int i = 0; i < nv_; ++i) {
-      scale_[i] = tol_;
-      scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
-    }
+    set_scale(x0);
     Zs_[0].setZero();
     rate_at(t, x0, Zs_[0], Fs_[0]);
     bool fresh = false;
@@ -483,10 +486,7 @@ class StepperT {
     const RadauIIA<S>& R = RadauIIA<S>::get();
     const int n2 = 2 * nv_;
     size_workspace();
-    for (int i = 0; i < nv_; ++i) {
-      scale_[i] = tol_;
-      scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
-    }
+    set_scale(x0);
     // The collocation polynomial of the last accepted step: the last call's, when this step
     // starts where it ended; kept when this call retries the same start.
     const bool retry = t == rt_call_;
@@ -534,6 +534,13 @@ class StepperT {
   }
 
  private:
+  // The scales of the error and Newton norms at the step's start (set_tolerance()).
+  void set_scale(const StateT<S>& x0) {
+    for (int i = 0; i < nv_; ++i) {
+      scale_[i] = tol_;
+      scale_[nv_ + i] = tol_ * (S(1) + std::abs(x0.beta[i]));
+    }
+  }
   // LU of gamma/h - J (real, lu_) and (alpha - i beta)/h - J (complex, clu_).
   void factorize_radau(S h) {
     const RadauIIA<S>& R = RadauIIA<S>::get();
@@ -559,7 +566,7 @@ class StepperT {
       if (!have) continue;
       const S x = S(1) + R.c[i] * h / rh_prev_;
       for (int k = 0; k < 3; ++k) {
-        S w = (x - S(0)) / (R.c[k] - S(0));  // node 0 (value 0) and the other two
+        S w = x / R.c[k];  // node 0 (value 0) and the other two
         for (int m = 0; m < 3; ++m)
           if (m != k) w *= (x - R.c[m]) / (R.c[k] - R.c[m]);
         if (k == 2) w -= S(1);

@@ -187,7 +187,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       if (msg.find("singular") != std::string::npos) throw;
       blow_up(msg, h);
     }
-    if (!ok && (opt.method == Integrator::Esdirk || opt.method == Integrator::Radau5)) {
+    if (!ok && is_adaptive_implicit(opt.method)) {
       ++sum.rejected;
       ++sum.newton_failures;
       h *= opt.method == Integrator::Radau5 ? S(0.5) : S(0.25);  // a smaller step
@@ -237,9 +237,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       // esdirk4 and radau5 keep their step (and so their LU factorizations, O(n_v^3)) when
       // the controller would grow it by less than 20 % (as RADAU5: Hairer and Wanner, Solving
       // ODEs II, IV.8).
-      if (!((opt.method == Integrator::Esdirk || opt.method == Integrator::Radau5) &&
-            factor >= S(1) && factor <= S(1.2)))
-        h *= factor;
+      if (!(is_adaptive_implicit(opt.method) && factor >= S(1) && factor <= S(1.2))) h *= factor;
     } else {
       t = S(sum.steps + 1) * h;
     }
