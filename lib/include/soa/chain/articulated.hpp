@@ -161,10 +161,16 @@ template <class S>
   throw Error("body '" + name + buf);
 }
 
-/// Per-body results of the Riccati recursion; sized once for a model.
+/// Per-body results of the Riccati recursion; sized once for a model (\f$D, D^{-1}, G\f$ to
+/// each hinge's \f$n_k\f$, so that riccati_step() writes their entries and not their sizes).
 template <class S>
 struct ArticulatedT {
-  explicit ArticulatedT(const ModelT<S>& m) : ArticulatedT(m.n(), m.n(), false) {}
+  explicit ArticulatedT(const ModelT<S>& m) : ArticulatedT(m.n(), m.n(), false) {
+    for (int k = 1; k <= m.n(); ++k) {
+      const int nv = m.body(k).hinge.nv();
+      D[k - 1].resize(nv, nv), D_inv[k - 1].resize(nv, nv), G[k - 1].resize(6, nv);
+    }
+  }
   /// Rolling storage: \f$P, P^+, D, D^{-1}, G\f$ of the last two bodies of the recursion
   /// only (riccati_step() needs body k-1's to make body k's), no \f$R\f$: what the O(N)
   /// forward dynamics of a long chain keeps (ForwardDynamicsT's lean storage).
@@ -317,11 +323,14 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
       d = s.dot(Ps);
     }
     d_min = d;
-    art.D[i].setConstant(1, 1, d);
+    // Sized once (the model's constructor sizes them): no write to the size fields.
+    if (art.D[i].rows() != 1 || art.D_inv[i].rows() != 1 || art.G[i].cols() != 1)
+      art.D[i].resize(1, 1), art.D_inv[i].resize(1, 1), art.G[i].resize(6, 1);
+    art.D[i](0, 0) = d;
     const S d_inv = S(1) / d;
-    art.D_inv[i].setConstant(1, 1, d_inv);
+    art.D_inv[i](0, 0) = d_inv;
     const Vec6<S> g = Ps * d_inv;
-    art.G[i] = g;
+    art.G[i].col(0) = g;
     art.P_plus[i].noalias() = P - g * Ps.transpose();
   } else {
     const JointMap<S> Hs = B.hinge.H_star(th);

@@ -25,7 +25,9 @@ using HingeVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1>;
 template <class S>
 struct ForwardDynamicsT {
   explicit ForwardDynamicsT(const ModelT<S>& m)
-      : art(m), z(m.n()), z_plus(m.n()), nu(m.n()), alpha_plus(m.n()) {}
+      : art(m), z(m.n()), z_plus(m.n()), nu(m.n()), alpha_plus(m.n()) {
+    for (int k = 1; k <= m.n(); ++k) nu[k - 1].resize(m.body(k).hinge.nv());  // sized once
+  }
   /// The lean storage described above.
   static ForwardDynamicsT lean(const ModelT<S>& m) { return ForwardDynamicsT(m, true); }
   bool is_lean() const { return lean_; }
@@ -102,6 +104,11 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   WorkspaceT<S>::size(ws.a, m);
   WorkspaceT<S>::size(ws.b, m);
   WorkspaceT<S>::size(ws.alpha, m);
+  // The per-body arrays by their first element: indexing them reloads nothing per body.
+  const BodyT<S>* const bodies = m.bodies().data();
+  PhiT<S>* const phi = ws.phi.data();
+  AccelerationT<S>* const a = ws.a.data();
+  ForceT<S>* const b = ws.b.data();
   // A non-finite theta would stop the joint transforms with a message that names no body.
   if (!x.theta.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
   const bool moving = !x.beta.isZero(0);
@@ -109,15 +116,15 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   // Base to tip: phi(k+1,k), V(k), a(k), b(k) (spatial vectors as their 3-vector parts).
   Vec3<S> wp = zero, vp = zero;  // V(k+1)
   for (int k = n; k >= 1; --k) {
-    const BodyT<S>& B = m.body(k);
+    const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
-    ws.phi[k - 1] = joint_phi(B, th);
+    phi[k - 1] = joint_phi(B, th);
     Vec3<S> w = zero, v = zero, a_w = zero, a_v = zero, N = zero, F = zero;
     if (moving) {
       const S* be = x.beta.data() + B.v_offset;
       Vec3<S> dw, dv;
       detail::hinge_rate(B.hinge, th, be, dw, dv);
-      detail::velocity_and_coriolis(ws.phi[k - 1], wp, vp, dw, dv, w, v, a_w, a_v);
+      detail::velocity_and_coriolis(phi[k - 1], wp, vp, dw, dv, w, v, a_w, a_v);
       if (B.hinge.type == HingeType::Universal) {
         const AccelerationT<S> Hdot_beta = B.hinge.H_star_dot_times(th, be);
         a_w += Hdot_beta.angular();
@@ -130,8 +137,8 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     }
     if (!f_ext.empty()) N -= f_ext[k - 1].angular(), F -= f_ext[k - 1].linear();
     ws.V[k - 1] = VelocityT<S>(w, v);
-    ws.a[k - 1] = AccelerationT<S>(a_w, a_v);
-    ws.b[k - 1] = ForceT<S>(N, F);
+    a[k - 1] = AccelerationT<S>(a_w, a_v);
+    b[k - 1] = ForceT<S>(N, F);
   }
   // Tip to base: P, D, G, P+ (riccati_step()) and z, epsilon, nu, z+.
   ArticulatedT<S>& art = fd.art;
@@ -139,17 +146,17 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   CompositeTraceT<S> guard;
   Vec3<S> Np = zero, Fp = zero;  // z+(k-1)
   for (int k = 1; k <= n; ++k) {
-    const BodyT<S>& B = m.body(k);
+    const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
     const S d_min = riccati_step(m, x, ws, k, art, guard);
     const int slot = art.slot(k);
     if (!std::isfinite(double(d_min))) throw_non_finite(m, x, T, f_ext, beta_dot);
     // z(k) = phi(k,k-1) z+(k-1) + P(k) a(k) + b(k)
-    Vec3<S> N = ws.b[k - 1].angular(), F = ws.b[k - 1].linear();
-    if (k > 1) detail::add_apply(ws.phi[k - 2], Np, Fp, N, F);
+    Vec3<S> N = b[k - 1].angular(), F = b[k - 1].linear();
+    if (k > 1) detail::add_apply(phi[k - 2], Np, Fp, N, F);
     if (moving) {
       const Mat6<S>& P = art.P[slot];
-      const Vec3<S> a_w = ws.a[k - 1].angular(), a_v = ws.a[k - 1].linear();
+      const Vec3<S> a_w = a[k - 1].angular(), a_v = a[k - 1].linear();
       N += P.template topLeftCorner<3, 3>() * a_w + P.template topRightCorner<3, 3>() * a_v;
       F += P.template bottomLeftCorner<3, 3>() * a_w + P.template bottomRightCorner<3, 3>() * a_v;
     }
@@ -192,7 +199,9 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
         Eigen::Map<Vec6<S>>(fd.G_packed.data() + 6 * (B.v_offset + i)) = G.col(i);
       }
     } else {
-      fd.nu[k - 1] = Eigen::Map<const HingeVector<S>>(nu_k, nv);
+      HingeVector<S>& nu = fd.nu[k - 1];
+      if (nu.size() != nv) nu.resize(nv);
+      for (int i = 0; i < nv; ++i) nu[i] = nu_k[i];
       fd.z_plus[k - 1] = ForceT<S>(N, F);
     }
     Np = N, Fp = F;
@@ -201,11 +210,11 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   Vec3<S> dwp = zero, dvp = zero;  // alpha(k+1)
   if (m.has_gravity()) dvp = gravity_base_acceleration(m).linear();
   for (int k = n; k >= 1; --k) {
-    const BodyT<S>& B = m.body(k);
+    const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
     // alpha+(k) = phi*(k+1,k) alpha(k+1)
     Vec3<S> dw, dv;
-    detail::transpose_apply(ws.phi[k - 1], dwp, dvp, dw, dv);
+    detail::transpose_apply(phi[k - 1], dwp, dvp, dw, dv);
     if (!lean) fd.alpha_plus[k - 1] = AccelerationT<S>(dw, dv);
     // beta_dot(k) = nu(k) - G*(k) alpha+(k)
     S* bd = beta_dot.data() + B.v_offset;
@@ -222,7 +231,7 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     detail::hinge_rate(B.hinge, th, bd, hw, hv);
     dw += hw;
     dv += hv;
-    if (moving) dw += ws.a[k - 1].angular(), dv += ws.a[k - 1].linear();
+    if (moving) dw += a[k - 1].angular(), dv += a[k - 1].linear();
     ws.alpha[k - 1] = AccelerationT<S>(dw, dv);
     dwp = dw, dvp = dv;
   }
