@@ -204,15 +204,29 @@ TEST(dynamics_Forward, SingularDNamesTheBody) {
 }
 
 // The lean storage keeps G and nu packed and P rolling: the same arithmetic, so bitwise the
-// same beta_dot and alpha(k) (every hinge type, gravity, springs, external forces, rest).
+// same beta_dot and alpha(k) (every hinge type, gravity, springs, external forces, rest); the
+// full storage keeps G and nu per body as well as packed, and the two agree.
 TEST(dynamics_Forward, LeanStorageGivesBitwiseTheSameResult) {
   Random<double> rnd(31);
   for (int i = 0; i < kCases; ++i) {
     const DynamicsCase<double> c(rnd, i);
     soa::Workspace ws_full(c.m), ws_lean(c.m);
-    const VecX full = forward(c, nullptr, &ws_full);
+    soa::ForwardDynamics fd_full(c.m);
+    const VecX full = forward(c, &fd_full, &ws_full);
     const VecX lean = forward(c, nullptr, &ws_lean, true);
     ASSERT_TRUE((full.array() == lean.array()).all()) << "case " << i;
+    // The full storage's G(k) and nu(k), which the last pass reads packed, are the same.
+    for (int k = 1; k <= c.m.n(); ++k) {
+      const soa::Body& B = c.m.body(k);
+      for (int j = 0; j < B.hinge.nv(); ++j) {
+        const int o = B.v_offset + j;
+        ASSERT_TRUE(fd_full.art.G[k - 1].col(j) ==
+                    Eigen::Map<const soa::Vec6<double>>(fd_full.G_packed.data() + 6 * o))
+            << "case " << i << ", G(" << k << ")";
+        ASSERT_EQ(fd_full.nu[k - 1][j], fd_full.nu_packed[std::size_t(o)])
+            << "case " << i << ", nu(" << k << ")";
+      }
+    }
     for (int k = 1; k <= c.m.n(); ++k)
       ASSERT_TRUE(ws_full.alpha[k - 1].vector() == ws_lean.alpha[k - 1].vector())
           << "case " << i << ", alpha(" << k << ")";

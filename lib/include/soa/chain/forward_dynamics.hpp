@@ -25,7 +25,13 @@ using HingeVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1>;
 template <class S>
 struct ForwardDynamicsT {
   explicit ForwardDynamicsT(const ModelT<S>& m)
-      : art(m), z(m.n()), z_plus(m.n()), nu(m.n()), alpha_plus(m.n()) {
+      : art(m),
+        z(m.n()),
+        z_plus(m.n()),
+        nu(m.n()),
+        alpha_plus(m.n()),
+        G_packed(6 * std::size_t(m.nv())),
+        nu_packed(std::size_t(m.nv())) {
     for (int k = 1; k <= m.n(); ++k) nu[k - 1].resize(m.body(k).hinge.nv());  // sized once
   }
   /// The lean storage described above.
@@ -37,7 +43,10 @@ struct ForwardDynamicsT {
   std::vector<ForceT<S>> z_plus;             ///< \f$z^+(k) = z(k) + G(k)\,\epsilon(k)\f$
   std::vector<HingeVector<S>> nu;            ///< \f$\nu(k) = D^{-1}(k)\,\epsilon(k)\f$
   std::vector<AccelerationT<S>> alpha_plus;  ///< \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$
-  /// Lean storage: \f$G(k)\f$ column by column at 6 v_offset, \f$\nu(k)\f$ at v_offset.
+  /// \f$G(k)\f$ column by column at 6 v_offset, \f$\nu(k)\f$ at v_offset, in both
+  /// storages: the last pass reads them from here, in order, rather than from `art.G` and
+  /// `nu` (one or two cache lines a body each, out of cache once the full storage of a long
+  /// chain outgrows the L2 cache).
   std::vector<S> G_packed, nu_packed;
 
  private:
@@ -193,12 +202,11 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       N += Ge.template head<3>();
       F += Ge.template tail<3>();
     }
-    if (lean) {
-      for (int i = 0; i < nv; ++i) {
-        fd.nu_packed[B.v_offset + i] = nu_k[i];
-        Eigen::Map<Vec6<S>>(fd.G_packed.data() + 6 * (B.v_offset + i)) = G.col(i);
-      }
-    } else {
+    for (int i = 0; i < nv; ++i) {
+      fd.nu_packed[B.v_offset + i] = nu_k[i];
+      Eigen::Map<Vec6<S>>(fd.G_packed.data() + 6 * (B.v_offset + i)) = G.col(i);
+    }
+    if (!lean) {
       HingeVector<S>& nu = fd.nu[k - 1];
       if (nu.size() != nv) nu.resize(nv);
       for (int i = 0; i < nv; ++i) nu[i] = nu_k[i];
@@ -219,9 +227,9 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     // beta_dot(k) = nu(k) - G*(k) alpha+(k)
     S* bd = beta_dot.data() + B.v_offset;
     const int nv = B.hinge.nv();
-    // G(k) column by column (6 numbers each) and nu(k), from either storage.
-    const S* G = lean ? fd.G_packed.data() + 6 * B.v_offset : art.G[k - 1].data();
-    const S* nu = lean ? fd.nu_packed.data() + B.v_offset : fd.nu[k - 1].data();
+    // G(k) column by column (6 numbers each) and nu(k), packed.
+    const S* G = fd.G_packed.data() + 6 * B.v_offset;
+    const S* nu = fd.nu_packed.data() + B.v_offset;
     for (int i = 0; i < nv; ++i) {
       const Eigen::Map<const Vec6<S>> Gi(G + 6 * i);
       bd[i] = nu[i] - (Gi.template head<3>().dot(dw) + Gi.template tail<3>().dot(dv));
