@@ -113,7 +113,8 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   WorkspaceT<S>::size(ws.a, m);
   WorkspaceT<S>::size(ws.b, m);
   WorkspaceT<S>::size(ws.alpha, m);
-  // The per-body arrays by their first element: indexing them reloads nothing per body.
+  // The per-body arrays that a later pass reads back (the model's bodies, phi, a, b), by their
+  // first element: indexing them reloads no vector per body.
   const BodyT<S>* const bodies = m.bodies().data();
   PhiT<S>* const phi = ws.phi.data();
   AccelerationT<S>* const a = ws.a.data();
