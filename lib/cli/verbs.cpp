@@ -468,6 +468,10 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
       w.member("newton_failures", sum.newton_failures);
       w.member("jacobians", sum.jacobians);
     }
+    if (opt.method == soa::Integrator::Variational) {
+      w.member("subdivided_steps", sum.subdivided);
+      w.member("max_pieces", sum.max_pieces);
+    }
     w.member("evaluations", sum.evaluations);
     if (sum.stiffness_checks > 0) {
       w.key("stiffness");
