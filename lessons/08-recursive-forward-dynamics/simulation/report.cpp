@@ -555,8 +555,9 @@ void energy_section(Checklist& checks, const fs::path& out, bool quick) {
   /// variational integrator (implicit midpoint in \f$(\theta, p)\f$) is symplectic and
   /// symmetric for any mass matrix. RK4 is neither: its energy error accumulates, about
   /// linearly in time. h = 0.02 s, but for the arm, whose wrist whips at up to about 90
-  /// rad/s after it falls: every method stops there long before the end at h = 0.02 s (each
-  /// such run is reported), so its figure is at h = 0.002 s.
+  /// rad/s after it falls: at h = 0.02 s every method but the variational one, which takes
+  /// the steps that turn a joint by over 0.5 rad in pieces, stops there long before the end
+  /// (each such run is reported), so its figure is at h = 0.002 s.
   const double T = quick ? 20 : 2000, h = 0.02, h_arm = 0.002;
   const std::vector<EnergyScene> scenes = {
       {pendulum(T), h},
@@ -618,17 +619,19 @@ void energy_section(Checklist& checks, const fs::path& out, bool quick) {
   // The arm at the step of the other scenes: where each method stops.
   const SimProblem arm = scenes.back().p;
   md << "\nThe seven-joint arm at h = " << num(h, "%g") << " s, the step of the other scenes:";
-  bool all_stop = true;  // what docs/simulation.md says
+  bool as_said = true;  // what docs/simulation.md says: only the variational run goes on
   for (Integrator method : methods) {
     const EnergyTrace tr = energy_trace(arm, method, h);
-    all_stop = all_stop && !tr.diagnostic.empty();
+    as_said = as_said && tr.diagnostic.empty() == (method == Integrator::Variational);
     md << (method == methods.front() ? " " : "; ") << soa::integrator_name(method) << " "
        << (tr.diagnostic.empty() ? "ran to " + num(arm.t_end, "%g") + " s" : stop_sentence(tr));
   }
   md << ".\n";
   if (!quick)
-    checks.check("arm7 at h = " + num(h, "%g") + " s: every method stops with a diagnostic",
-                 all_stop);
+    checks.check("arm7 at h = " + num(h, "%g") +
+                     " s: every method stops with a diagnostic but the variational one, in "
+                     "pieces",
+                 as_said);
   if (!stopped.empty()) {
     md << "\nRuns stopped by a diagnostic in the figure (their last window marked):\n\n";
     for (const std::string& line : stopped) md << "- " << line << "\n";
