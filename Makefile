@@ -29,7 +29,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # missing ones are installed.
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
-  libjs-three chromium pkgconf liburdfdom-dev libsundials-dev
+  libjs-three chromium pkgconf liburdfdom-dev libsundials-dev libsleef-dev
 # The peers of `make compare` (tests/bench/compare/), only for that target.
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 

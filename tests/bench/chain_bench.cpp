@@ -2,7 +2,9 @@
 // the time per joint must stay flat as N grows. Variants show what a scene pays for the
 // parts it uses: gravity, external forces, motion (at rest the velocity terms are skipped).
 // And the composite-body mass matrix (lesson 5), O(N^2): Google Benchmark fits the exponent
-// (MassMatrixCRB_BigO).
+// (MassMatrixCRB_BigO). And the hinge angles' sines and cosines, in one batch or one by one.
+#include <cmath>
+
 #include "bench_chain.hpp"
 
 namespace {
@@ -60,8 +62,35 @@ void MassMatrixInertial(benchmark::State& state) {
   state.SetComplexityN(n);
 }
 
+// The sines and cosines of the hinge angles, per joint: soa::hinge_sin_cos() (SLEEF's vector
+// sincos in one batch), against one std::sin and one std::cos a joint (glibc), as the
+// recursions took them before.
+template <bool batched>
+void HingeSinCos(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Chain c(n, false);
+  soa::Workspace ws(c.model);
+  const double* theta = c.x.theta.data();
+  for (auto _ : state) {
+    if constexpr (batched) {
+      soa::hinge_sin_cos(c.model, theta, ws);
+    } else {
+      for (int i = 0; i < n; ++i) {
+        ws.hinge_sin[std::size_t(i)] = std::sin(theta[i]);
+        ws.hinge_cos[std::size_t(i)] = std::cos(theta[i]);
+      }
+    }
+    benchmark::DoNotOptimize(ws.hinge_sin.data());
+    benchmark::DoNotOptimize(ws.hinge_cos.data());
+    benchmark::ClobberMemory();
+  }
+  soa::bench::report(state, n);
+}
+
 }  // namespace
 
+BENCHMARK_TEMPLATE(HingeSinCos, true)->Name("HingeSinCosBatch")->Arg(7)->Arg(50)->Arg(1000);
+BENCHMARK_TEMPLATE(HingeSinCos, false)->Name("HingeSinCosStd")->Arg(7)->Arg(50)->Arg(1000);
 BENCHMARK(MassMatrixCRB)->Arg(7)->Arg(50)->Arg(200)->Arg(1000);
 BENCHMARK(MassMatrixCRB)->RangeMultiplier(2)->Range(1, 1024)->Complexity();
 BENCHMARK(MassMatrixInertial)->Arg(7)->Arg(50)->Arg(200)->Arg(1000);

@@ -102,7 +102,8 @@ template <class S>
 /// Springs and dampers add their hinge force to \f$T\f$. Parts the scene does not use are
 /// skipped (no velocity terms at rest, no gravity, no external forces when \p f_ext is
 /// empty). A singular \f$D(k)\f$ stops with the message of articulated_inertias(); a
-/// non-finite input or result with soa::Error naming it. Fills ws.phi, V, a, b, alpha.
+/// non-finite input or result with soa::Error naming it. Fills ws.phi, V, a, b, alpha (and
+/// hinge_sin, hinge_cos).
 template <class S>
 void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
                       const ExternalForces<S>& f_ext, WorkspaceT<S>& ws, ForwardDynamicsT<S>& fd,
@@ -123,12 +124,16 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   if (!x.theta.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
   const bool moving = !x.beta.isZero(0);
   const Vec3<S> zero = Vec3<S>::Zero();
-  // Base to tip: phi(k+1,k), V(k), a(k), b(k) (spatial vectors as their 3-vector parts).
+  // Base to tip: phi(k+1,k), V(k), a(k), b(k) (spatial vectors as their 3-vector parts),
+  // after the hinge angles' sines and cosines in one batch.
+  hinge_sin_cos(m, x.theta.data(), ws);
+  const S* const sin_h = ws.hinge_sin.data();
+  const S* const cos_h = ws.hinge_cos.data();
   Vec3<S> wp = zero, vp = zero;  // V(k+1)
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
-    phi[k - 1] = joint_phi(B, th);
+    phi[k - 1] = joint_phi(B, th, sin_h[k - 1], cos_h[k - 1]);
     Vec3<S> w = zero, v = zero, a_w = zero, a_v = zero, N = zero, F = zero;
     if (moving) {
       const S* be = x.beta.data() + B.v_offset;

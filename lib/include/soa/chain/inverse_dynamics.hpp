@@ -81,14 +81,18 @@ void inverse_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& bet
   const bool moving = !x.beta.isZero(0);
   // Base to tip, in one pass: phi(k+1,k), V(k), a(k), alpha(k) (the scatter recursions of
   // update_phi(), update_velocities() and update_accelerations(), fused), and the body's own
-  // force M(k) alpha(k) + b(k) into ws.f.
+  // force M(k) alpha(k) + b(k) into ws.f. The hinge angles' sines and cosines first, in one
+  // batch.
+  hinge_sin_cos(m, x.theta.data(), ws);
+  const S* const sin_h = ws.hinge_sin.data();
+  const S* const cos_h = ws.hinge_cos.data();
   const Vec3<S> zero = Vec3<S>::Zero();
   Vec3<S> wp = zero, vp = zero, dwp = zero, dvp = zero;  // V(k+1), alpha(k+1)
   if (m.has_gravity()) dvp = gravity_base_acceleration(m).linear();
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
     const S* th = x.theta.data() + B.q_offset;
-    ws.phi[k - 1] = joint_phi(B, th);
+    ws.phi[k - 1] = joint_phi(B, th, sin_h[k - 1], cos_h[k - 1]);
     const PhiT<S>& phi = ws.phi[k - 1];
     // alpha(k) = phi*(k+1,k) alpha(k+1) + H*(k) beta_dot(k) + a(k)
     Vec3<S> dw, dv, hw, hv;

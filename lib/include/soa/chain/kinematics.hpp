@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "soa/chain/workspace.hpp"
+#include "soa/detail/sin_cos.hpp"
 #include "soa/spatial_cross.hpp"
 #include "soa/tilde.hpp"
 
@@ -19,17 +20,15 @@ EIGEN_ALWAYS_INLINE Vec3<S> transpose_times(const Mat3<S>& R, const Vec3<S>& x) 
   return Vec3<S>(R.col(0).dot(x), R.col(1).dot(x), R.col(2).dot(x));
 }
 
-/// \f$R_p\, e^{\theta \tilde a}\f$ for a unit axis \f$a\f$, by Rodrigues (lesson 1):
+/// \f$R_p\, e^{\theta \tilde a}\f$ for a unit axis \f$a\f$ from \f$c = \cos\theta\f$ and
+/// \f$s = \sin\theta\f$, by Rodrigues (lesson 1):
 /// \f$e^{\theta\tilde a} = c I + s\tilde a + (1 - c)\, a a^*\f$. About a coordinate axis
 /// \f$\pm e_i\f$ only two columns of \f$R_p\f$ turn: with \f$(i, j, m)\f$ cyclic,
 /// \f$c_j' = c\, c_j + s\, c_m\f$ and \f$c_m' = c\, c_m - s\, c_j\f$ (\f$s\f$ taking the
 /// sign of the axis).
 template <class S>
-EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& a, S theta) {
+EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& a, S c, S s) {
   using std::abs;
-  using std::cos;
-  using std::sin;
-  const S c = cos(theta), s = sin(theta);
   const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;
   const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
   if (a[j] == S(0) && a[m] == S(0) && abs(a[i]) == S(1)) {
@@ -45,10 +44,21 @@ EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& 
   return Rp * E;
 }
 
+/// \f$R_p\, e^{\theta \tilde a}\f$ with std::cos and std::sin of \p theta.
+template <class S>
+EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& a, S theta) {
+  using std::cos;
+  using std::sin;
+  return rotate_about_axis(Rp, a, S(cos(theta)), S(sin(theta)));
+}
+
 }  // namespace detail
 
 /// \f$\phi(k+1,k) = {}^{O_{k+1}}T_{O_k^+}\; {}^{O_k^+}T_{O_k}(\theta(k))\f$ of body k (slides
 /// 25-27: \f$R = R_p R_h\f$, \f$l = l_p + R_p l_h\f$); a revolute hinge has \f$l_h = 0\f$.
+/// The recursions take the other joint_phi(), from hinge_sin_cos()'s sines and cosines: in
+/// double the two may differ in the last bit (SLEEF's sine is not glibc's:
+/// soa/detail/sin_cos.hpp).
 template <class S>
 EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta) {
   if (B.hinge.type == HingeType::Revolute)
@@ -57,13 +67,53 @@ EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta) {
   return PhiT<S>(B.placement * B.hinge.transform(theta));
 }
 
-/// \f$\phi(k+1,k)\f$ for every body (joint_phi()).
+/// joint_phi() of body k with \p sin_theta and \p cos_theta of its angle, when its hinge is
+/// revolute (hinge_sin_cos()); other hinges ignore them.
+template <class S>
+EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta, S sin_theta, S cos_theta) {
+  if (B.hinge.type == HingeType::Revolute)
+    return PhiT<S>(detail::rotate_about_axis(B.placement.R(), B.hinge.axis, cos_theta, sin_theta),
+                   B.placement.l());
+  return PhiT<S>(B.placement * B.hinge.transform(theta));
+}
+
+/// \f$\sin\theta(k)\f$ and \f$\cos\theta(k)\f$ of every revolute hinge k into
+/// ws.hinge_sin and ws.hinge_cos (entry k - 1), for joint_phi(). In double the angles are
+/// gathered in body order and take one batch of detail::sin_cos() (SLEEF's vector sincos,
+/// 1.0 ulp): one libm call per joint was a large share of the recursions' time per body.
+/// Other scalars take std::sin and std::cos of the revolute angles only.
+template <class S>
+void hinge_sin_cos(const ModelT<S>& m, const S* theta, WorkspaceT<S>& ws) {
+  WorkspaceT<S>::size(ws.hinge_sin, m);
+  WorkspaceT<S>::size(ws.hinge_cos, m);
+  const BodyT<S>* const bodies = m.bodies().data();
+  S* const s = ws.hinge_sin.data();
+  S* const c = ws.hinge_cos.data();
+  if constexpr (detail::batched_sin_cos<S>) {
+    for (int i = 0; i < m.n(); ++i)  // the angles (0 for other hinges), then cos in place
+      c[i] = bodies[i].hinge.type == HingeType::Revolute ? theta[bodies[i].q_offset] : S(0);
+    detail::sin_cos(c, m.n(), s, c);
+  } else {
+    using std::cos;
+    using std::sin;
+    for (int i = 0; i < m.n(); ++i)
+      if (bodies[i].hinge.type == HingeType::Revolute) {
+        const S th = theta[bodies[i].q_offset];
+        s[i] = sin(th);
+        c[i] = cos(th);
+      }
+  }
+}
+
+/// \f$\phi(k+1,k)\f$ for every body (joint_phi(), after hinge_sin_cos()).
 template <class S>
 void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
   WorkspaceT<S>::size(ws.phi, m);
+  hinge_sin_cos(m, theta.data(), ws);
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
-    ws.phi[k - 1] = joint_phi(B, theta.data() + B.q_offset);
+    ws.phi[k - 1] =
+        joint_phi(B, theta.data() + B.q_offset, ws.hinge_sin[k - 1], ws.hinge_cos[k - 1]);
   }
 }
 

@@ -24,10 +24,18 @@ using State = StateT<double>;
 template <class S>
 struct WorkspaceT {
   explicit WorkspaceT(const ModelT<S>& m)
-      : phi(m.n()), pose(m.n()), V(m.n()), a(m.n()), alpha(m.n()), b(m.n()), f(m.n()) {}
+      : phi(m.n()),
+        pose(m.n()),
+        V(m.n()),
+        a(m.n()),
+        alpha(m.n()),
+        b(m.n()),
+        f(m.n()),
+        hinge_sin(m.n()),
+        hinge_cos(m.n()) {}
   /// A workspace whose parts are sized by the first function that fills them (each filling
   /// function calls size()), so that it holds only what the computation uses: the `soa`
-  /// command on a chain of a million bodies (432 bytes a body in all; poses alone 96).
+  /// command on a chain of a million bodies (448 bytes a body in all; poses alone 96).
   static WorkspaceT lazy() { return WorkspaceT(); }
 
   /// Sizes \p part for \p m when it is not (once: nothing is allocated per call after).
@@ -43,6 +51,9 @@ struct WorkspaceT {
   std::vector<AccelerationT<S>> alpha;  ///< \f$\alpha(k)\f$
   std::vector<ForceT<S>> b;             ///< \f$b(k)\f$ (gyroscopic, less external forces)
   std::vector<ForceT<S>> f;             ///< inter-body force \f$f(k)\f$ on body k at \f$O_k\f$
+  /// \f$\sin\theta(k)\f$ and \f$\cos\theta(k)\f$ of a revolute hinge k, by
+  /// hinge_sin_cos() (the entries of other hinges are unused).
+  std::vector<S> hinge_sin, hinge_cos;
 
  private:
   WorkspaceT() = default;

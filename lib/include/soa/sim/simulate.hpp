@@ -13,6 +13,15 @@
 
 namespace soa {
 
+namespace detail {
+/// \p v as printf's `%.3g`, for the messages of simulate().
+inline std::string format_g3(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+}  // namespace detail
+
 /// What to integrate and how.
 template <class S>
 struct SimulationOptionsT {
@@ -270,20 +279,14 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     }
     if (!ok) {
       const auto& f = stepper.newton_failure();
-      char what[240];
-      const int n = std::snprintf(what, sizeof what,
-                                  "Newton's method did not converge (last correction |dZ| = "
-                                  "%.3g, %s)",
-                                  double(f.residual), f.diverged ? "diverging" : "too slow");
-      int used = n > 0 && std::size_t(n) < sizeof what ? n : int(sizeof what) - 1;
+      std::string what = "Newton's method did not converge (last correction |dZ| = " +
+                         detail::format_g3(double(f.residual)) +
+                         (f.diverged ? ", diverging)" : ", too slow)");
       if (f.reached > S(0))
-        used += std::snprintf(what + used, sizeof what - std::size_t(used),
-                              "; continued in the step, its equation solved up to h = %.3g only",
-                              double(f.reached));
-      used = std::min(used, int(sizeof what) - 1);
+        what += "; continued in the step, its equation solved up to h = " +
+                detail::format_g3(double(f.reached)) + " only";
       if (opt.method == Integrator::Variational && pieces > 1)
-        std::snprintf(what + used, sizeof what - std::size_t(used),
-                      "; the step was split into up to %d pieces", pieces);
+        what += "; the step was split into up to " + std::to_string(pieces) + " pieces";
       blow_up(what, h);
     }
     if (adaptive) {
