@@ -4,10 +4,13 @@
 //   eps n cond(M);
 // - M Minv = I, and Minv symmetric;
 // - Minv (T - C) is the forward dynamics of lesson 8;
-// - the fast paths against the general path (column sweep and Upsilon);
+// - the fast paths against the general path (column sweep and Upsilon), and the sweep's
+//   row kernels for a plane rotation against the general kernels, bit for bit;
 // - a singular D(k) throws as the Riccati recursion does.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <string>
 
 #include "dynamics_support.hpp"
@@ -76,6 +79,71 @@ TEST(dynamics_MassMatrixInverse, FastPathsAgreeWithTheGeneralPath) {
   EXPECT_GT(axis_offsets, kCases);
   EXPECT_LE(sweep.value(), 1.0);
   EXPECT_LE(upsilon.value(), 1.0);
+}
+
+// The row kernels of the column sweep for a phi turning about the coordinate axis I
+// (detail::tip_to_base_rows_plane(), base_to_tip_rows_plane()) against the general kernels,
+// for every I, every unit column P of H* (and P = -1, any H*), on random rows, phi and G:
+// the same arithmetic less products with exact zeros and ones, so equal bit for bit.
+TEST(dynamics_MassMatrixInverse, PlaneRowKernelsAreTheGeneralKernelsBitForBit) {
+  std::mt19937 g(43);
+  std::normal_distribution<double> N;
+  constexpr int kRows = 37;
+  int checked = 0, differing = 0;
+  for (int trial = 0; trial < 20; ++trial)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int P = -1; P < 6; ++P) {
+        const int J = (axis + 1) % 3, K = (axis + 2) % 3;
+        const double th = 4 * N(g);
+        soa::Mat3<double> R = soa::Mat3<double>::Identity();
+        R(J, J) = std::cos(th), R(J, K) = -std::sin(th);
+        R(K, J) = std::sin(th), R(K, K) = std::cos(th);
+        ASSERT_EQ(soa::detail::plane_rotation_axis(R), axis);
+        const soa::Phi phi(R, soa::Vec3<double>(N(g), N(g), N(g)));
+        soa::Vec6<double> s = soa::Vec6<double>::Zero(), gk;
+        if (P >= 0)
+          s[P] = g() % 2 ? 1.0 : -1.0;
+        else
+          for (int i = 0; i < 6; ++i) s[i] = N(g);
+        for (int i = 0; i < 6; ++i) gk[i] = N(g);
+        const double D_inv = std::exp(N(g));
+        MatX rows(kRows, 7);  // six columns of the block, then the column of Minv
+        for (int i = 0; i < rows.size(); ++i) rows.data()[i] = N(g);
+        for (const bool tip_to_base : {true, false}) {
+          MatX general = rows, plane = rows;
+          auto col = [](MatX& X, int j) { return X.col(j).data(); };
+          if (tip_to_base)
+            soa::detail::tip_to_base_rows_1dof(kRows, phi, s, D_inv, gk, col(general, 0),
+                                               col(general, 1), col(general, 2), col(general, 3),
+                                               col(general, 4), col(general, 5), col(general, 6));
+          else
+            soa::detail::base_to_tip_rows_1dof(kRows, &phi, s, gk, col(general, 0), col(general, 1),
+                                               col(general, 2), col(general, 3), col(general, 4),
+                                               col(general, 5), col(general, 6));
+          soa::detail::with_plane_axis(axis, [&](auto I) {
+            soa::detail::with_unit_column(P, [&](auto Pc) {
+              constexpr int kI = decltype(I)::value, kP = decltype(Pc)::value;
+              if (tip_to_base)
+                soa::detail::tip_to_base_rows_plane<kI, kP>(
+                    kRows, phi, s, D_inv, gk, col(plane, 0), col(plane, 1), col(plane, 2),
+                    col(plane, 3), col(plane, 4), col(plane, 5), col(plane, 6));
+              else
+                soa::detail::base_to_tip_rows_plane<kI, kP>(
+                    kRows, phi, s, gk, col(plane, 0), col(plane, 1), col(plane, 2), col(plane, 3),
+                    col(plane, 4), col(plane, 5), col(plane, 6));
+            });
+          });
+          ++checked;
+          if (!(plane.array() == general.array()).all()) {
+            ++differing;
+            ADD_FAILURE() << (tip_to_base ? "tip to base" : "base to tip") << ", axis " << axis
+                          << ", P " << P << ": largest difference "
+                          << (plane - general).cwiseAbs().maxCoeff();
+          }
+        }
+      }
+  EXPECT_EQ(checked, 2 * 20 * 3 * 7);
+  EXPECT_EQ(differing, 0);
 }
 
 TEST(dynamics_MassMatrixInverse, TimesTMinusCIsTheForwardDynamics) {
