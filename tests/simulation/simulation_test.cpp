@@ -242,6 +242,23 @@ TEST(simulation_BlowUp, ExplicitMethodsStopWithADiagnostic) {
   EXPECT_EQ(blow_up_message(Integrator::RK4, 1e-4), "(no error)");  // h omega ~ 0.6
 }
 
+// A blow-up's cause can quote a body's name, which a scene or URDF file may make long: the
+// message keeps it whole, between the run's place and the stiffness estimates.
+TEST(simulation_BlowUp, TheMessageKeepsALongCauseWhole) {
+  for (const std::size_t length : {1, 400, 5000}) {
+    const std::string what =
+        "forward dynamics: beta_dot of body '" + std::string(length, 'q') + "' is not finite";
+    const std::string msg = soa::blow_up_message(Integrator::RK4, 1.5, 12, 1e-3, what, 6.25, 1e5);
+    const std::string head = std::string("simulate (") + soa::integrator_name(Integrator::RK4) +
+                             "): blow-up at t = 1.5 s, step 12 (h = 0.001): ";
+    const std::string tail =
+        "; estimated stiffness x step = 6.25 at t = 0 (1e+05 at the last "
+        "state) (" +
+        std::string(soa::stability_note(Integrator::RK4)) + ")";
+    EXPECT_EQ(msg, head + what + tail) << "cause of " << what.size() << " characters";
+  }
+}
+
 // The stiff pendulum of blow_up_message(): omega = sqrt(k / I), I its inertia about the hinge
 // from the kinetic energy at a unit rate.
 double stiff_omega() {

@@ -14,13 +14,26 @@
 namespace soa {
 
 namespace detail {
-/// \p v as printf's `%.3g`, for the messages of simulate().
-inline std::string format_g3(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+/// \p v as printf's `%.<digits>g`, for the messages of simulate().
+inline std::string format_g(double v, int digits = 3) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
 }
 }  // namespace detail
+
+/// The message of a run of \p method that blew up at time \p t in step \p step of size \p h,
+/// for the reason \p what (whole, however long: it may quote a body's name), with
+/// \f$|h\lambda|\f$ estimated at the start (\p h_lambda0) and at the last state
+/// (\p h_lambda).
+inline std::string blow_up_message(Integrator method, double t, long step, double h,
+                                   const std::string& what, double h_lambda0, double h_lambda) {
+  return std::string("simulate (") + integrator_name(method) +
+         "): blow-up at t = " + detail::format_g(t, 6) + " s, step " + std::to_string(step) +
+         " (h = " + detail::format_g(h) + "): " + what +
+         "; estimated stiffness x step = " + detail::format_g(h_lambda0) + " at t = 0 (" +
+         detail::format_g(h_lambda) + " at the last state) (" + stability_note(method) + ")";
+}
 
 /// What to integrate and how.
 template <class S>
@@ -151,14 +164,8 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   auto blow_up = [&](const std::string& what, S h_step) {
     const S lambda0 = stiffness_estimate(stepper, nv, S(0), x_start);
     const S lambda = stiffness_estimate(stepper, nv, t, x);
-    char buf[480];
-    std::snprintf(buf, sizeof buf,
-                  "simulate (%s): blow-up at t = %.6g s, step %ld (h = %.3g): %s; estimated "
-                  "stiffness x step = %.3g at t = 0 (%.3g at the last state) (%s)",
-                  integrator_name(opt.method), double(t), sum.steps + 1, double(h_step),
-                  what.c_str(), double(lambda0 * h_step), double(lambda * h_step),
-                  stability_note(opt.method));
-    throw Error(buf);
+    throw Error(blow_up_message(opt.method, double(t), sum.steps + 1, double(h_step), what,
+                                double(lambda0 * h_step), double(lambda * h_step)));
   };
   // The variational step in m = 1, 2, 4, ..., kVariationalPieces pieces of h/m: the fewest
   // whose Newton iterations converge and in which no angle turns by more than opt.max_turn
@@ -280,11 +287,11 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     if (!ok) {
       const auto& f = stepper.newton_failure();
       std::string what = "Newton's method did not converge (last correction |dZ| = " +
-                         detail::format_g3(double(f.residual)) +
+                         detail::format_g(double(f.residual)) +
                          (f.diverged ? ", diverging)" : ", too slow)");
       if (f.reached > S(0))
         what += "; continued in the step, its equation solved up to h = " +
-                detail::format_g3(double(f.reached)) + " only";
+                detail::format_g(double(f.reached)) + " only";
       if (opt.method == Integrator::Variational && pieces > 1)
         what += "; the step was split into up to " + std::to_string(pieces) + " pieces";
       blow_up(what, h);
