@@ -109,10 +109,19 @@
   SOA_TEMPLATES_SIM(PREFIX, S)
 // clang-format on
 
+// A precision left out of the library's build (SOA_PRECISIONS, lib/CMakeLists.txt) is not
+// declared extern: SOA_LIB_LACKS_<precision> tells every program linking the library, and a
+// program using that precision compiles the templates itself (slower to build, same code).
 #ifndef SOA_INSTANTIATING
 namespace soa {
+#ifndef SOA_LIB_LACKS_FLOAT
 SOA_TEMPLATES(extern, float)
+#endif
+#ifndef SOA_LIB_LACKS_DOUBLE
 SOA_TEMPLATES(extern, double)
+#endif
+#ifndef SOA_LIB_LACKS_LONG_DOUBLE
 SOA_TEMPLATES(extern, long double)
+#endif
 }  // namespace soa
 #endif
