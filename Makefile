@@ -75,8 +75,14 @@ test: build
 # One table per lesson: each exercise pass / FAIL (with what went wrong) / not done. Never
 # stops the build. Its own build, build/exercises: the library (double only) and the exercise
 # tests, at -O1 -g with Eigen's assertions on; the student's code also with AddressSanitizer
-# + UBSan where the compiler has them, so that a mistake stops at the student's own line.
-EX_DIR := build/exercises
+# + UBSan where the compiler has them, so that a mistake stops at the student's own line,
+# and with the student's warnings (kept by tests/exercises/keep_diagnostics.sh, shown in the
+# rows). make test runs this same recipe on the solutions (exercises.student-config).
+EX_DIR ?= build/exercises
+# The folder holding the student's NN-topic/*.cpp: exercises/ itself. The test of this
+# configuration (tests/exercises/student_config.sh) points it at the solutions.
+EXERCISES ?= exercises
+EX_SRC_DIR := $(abspath $(EXERCISES))
 EX_LESSON := $(if $(EX),$(word 1,$(subst ., ,$(EX))),$(LESSON))
 EX_NN := $(if $(EX_LESSON),$(shell printf '%02d' $(EX_LESSON)),)
 EX_FILTER := $(if $(EX),--gtest_filter=Exercise$(subst .,_,$(EX))_*,)
@@ -89,7 +95,8 @@ ifneq ($(HINT),)
 else
 	@test -n "$(EX_NNS)" || { echo "no lesson $(EX_LESSON): lessons are 1 to 8"; exit 0; }
 	@mkdir -p $(EX_DIR)
-	@if [ ! -f $(EX_DIR)/build.ninja ] || [ Makefile -nt $(EX_DIR)/CMakeCache.txt ]; then \
+	@if [ ! -f $(EX_DIR)/build.ninja ] || [ Makefile -nt $(EX_DIR)/CMakeCache.txt ] \
+	     || ! grep -qx 'SOA_EXERCISES_DIR:PATH=$(EX_SRC_DIR)' $(EX_DIR)/CMakeCache.txt; then \
 	  san=OFF; t=$$(mktemp -d); \
 	  echo 'int main() { return 0; }' >$$t/a.cpp; \
 	  c++ -fsanitize=address,undefined $$t/a.cpp -o $$t/a 2>/dev/null && $$t/a && san=ON; \
@@ -97,6 +104,7 @@ else
 	  cmake -S . -B $(EX_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSOA_SANITIZE_STUDENT=$$san \
 	    -DSOA_PRECISIONS=double -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
+	    -DSOA_EXERCISES_DIR=$(EX_SRC_DIR) \
 	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
 	    || { cat $(EX_DIR).cmake.log; exit 1; }; \
 	fi
@@ -112,6 +120,8 @@ else
 	    mkdir -p $(EX_DIR)/cases; SOA_EXERCISE_CASES=$(EX_DIR)/cases \
 	    ASAN_OPTIONS=detect_leaks=0 $(EX_DIR)/tests/ex$$nn-exercises --report \
 	      --header $$dir/exercises.hpp $(EX_FILTER) \
+	      $$(find $(EX_DIR)/exercises/CMakeFiles/exercises_$$nn.dir -name '*.diag' \
+	           -exec printf -- '--warnings %s ' {} \;) \
 	      || echo "  the test program stopped: the message above names the line (see also $(EX_DIR)/ex$$nn-exercises.log)"; \
 	  else echo "  does not compile yet (all of $(EX_DIR)/ex$$nn-exercises.log):"; \
 	       grep -m8 -E 'error|note: +candidate' $(EX_DIR)/ex$$nn-exercises.log | sed 's/^/    /'; fi; \

@@ -35,7 +35,7 @@ namespace soa::ex01 {
 /// i.e. first rotate both parts into x-coordinates, then add the moment of the offset force
 /// (slide 48: \f$N(x) = N(y) + l(x,y) \times F(y)\f$, \f$F(x) = F(y)\f$).
 ///
-/// Do not call Phi::apply() or Phi::matrix(). Hint: `phi_xy.R()`, `phi_xy.l()`,
+/// Do not call soa::Phi::apply() or soa::Phi::matrix(). Hint: `phi_xy.R()`, `phi_xy.l()`,
 /// `f_y.angular()`, `f_y.linear()`, and soa::Force(N, F).
 Force apply_phi(const Phi& phi_xy, const Force& f_y);
 
@@ -66,7 +66,8 @@ Acceleration spatial_cross(const Velocity& X, const Velocity& Y);
 /// with \f$R\, J\, R^*\f$, then move it to x), or multiply out the 6x6 product by blocks.
 /// Careful with a zero mass: the first route divides by m (you may assume \f$m > 0\f$).
 ///
-/// Do not call soa::transform(), SpatialInertia::from_cm(), J_cm() or matrix().
+/// Do not call soa::transform(), soa::SpatialInertia::from_cm(), soa::SpatialInertia::J_cm()
+/// or soa::SpatialInertia::matrix().
 SpatialInertia parallel_axis(const Phi& phi_xy, const SpatialInertia& M_y);
 
 /// **Exercise 1.4: A unit quaternion from axis and angle (slide 19).**
@@ -80,7 +81,8 @@ SpatialInertia parallel_axis(const Phi& phi_xy, const SpatialInertia& M_y);
 /// or angle, names no rotation: throw soa::Error with a message saying so (never return
 /// NaN). Build the result with soa::UnitQuaternion(q, q0).
 ///
-/// Do not call UnitQuaternion::exp(), AxisAngle or exp_so3(). Check yourself: its matrix()
+/// Do not call soa::UnitQuaternion::exp(), soa::AxisAngle or soa::exp_so3(). Check yourself:
+/// its matrix()
 /// is the Rodrigues formula \f$\cos\theta\, I + (1-\cos\theta)\, n n^* + \sin\theta\,
 /// \tilde n\f$.
 UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta);
@@ -96,7 +98,8 @@ UnitQuaternion quaternion_from_axis_angle(const Vec3<double>& n, double theta);
 /// Check yourself with the centre of mass form of slide 67: \f$v(C) = v(x) + \omega \times
 /// p(x)\f$ and \f$T = \tfrac12 \omega^* J(C)\, \omega + \tfrac12 m\, v^*(C)\, v(C)\f$.
 ///
-/// Do not call SpatialInertia::kinetic_energy(), operator*, or matrix().
+/// Do not call soa::SpatialInertia::kinetic_energy(), soa::SpatialInertia::operator*() or
+/// soa::SpatialInertia::matrix().
 double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x);
 
 /// **Exercise 1.6: Reversing a spatial velocity (slides 46, 36).**
@@ -110,7 +113,7 @@ double kinetic_energy(const SpatialInertia& M_x, const Velocity& V_x);
 /// Hint: bring \f$\omega(x,y)\f$ and \f$v(x,y)\f$ to x-coordinates with R first; then
 /// \f$l(x,y)\f$ is already there.
 ///
-/// Do not call Phi::transpose_apply(), Phi::inverse() or Phi::matrix().
+/// Do not call soa::Phi::transpose_apply(), soa::Phi::inverse() or soa::Phi::matrix().
 Velocity reverse_velocity(const Phi& phi_xy, const Velocity& V_xy);
 
 /// **Exercise 1.7: The exponential of SE(3) (slide 63).**

@@ -46,7 +46,7 @@ using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 ///   (soa::exp_so3 gives \f$e^{\tilde w}\f$);
 /// - spherical: \f$[I_3;\ 0]\f$ (6 x 3); free: \f$I_6\f$; locked: no columns (6 x 0).
 ///
-/// Reproduces soa::Hinge::H_star (do not call it, nor H_star_times).
+/// Reproduces soa::Hinge::H_star: do not call soa::Hinge::H_star, nor soa::Hinge::H_star_times.
 Matrix6X joint_map(const Hinge& hinge, const VecX<double>& theta);
 
 /// **Exercise 3.2: the velocity scatter recursion.**
@@ -92,7 +92,7 @@ MatX<double> phi_operator(const std::vector<Phi>& phi);
 /// `ws` holds them: `ws.pose[i-1]` is \f${}^I T_{O_i}\f$); hinge i's columns are
 /// `m.body(i).v_offset` ... `+ m.body(i).hinge.nv() - 1`, its coordinates start at
 /// `theta.data() + m.body(i).q_offset`, and `hinge.H_star(...)` gives \f$H^*(i)\f$.
-/// Reproduces soa::jacobian (do not call it).
+/// Reproduces soa::jacobian: do not call soa::jacobian.
 Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const Pose& frame);
 
 /// **Exercise 3.6: the Coriolis term \f$a(k)\f$.**
@@ -110,7 +110,7 @@ Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const 
 /// \f$\omega(k+1)\f$, \f$v(k+1)\f$ are the halves of \f$V(k+1)\f$ brought to \f$O_k\f$
 /// coordinates by the rotation alone, \f$R^* = ({}^{k+1}R_k)^*\f$ (\f$v(k+1)\f$ is the
 /// velocity of the point \f$O_{k+1}\f$, \f$v(k)\f$ that of \f$O_k\f$).
-/// Reproduces soa::coriolis_term (do not call it).
+/// Reproduces soa::coriolis_term: do not call soa::coriolis_term.
 Acceleration coriolis_acceleration(const Phi& phi, const Velocity& V_parent, const Velocity& dV,
                                    const Acceleration& Hdot_beta);
 

@@ -83,7 +83,7 @@ VecX<double> newton_euler(const Model& m, const State& x, const VecX<double>& be
 /// \phi(i-1,j)\f$ block by block) and return the Newton–Euler factorization of the mass
 /// matrix (lesson 4, section 3)
 /// \f[ \mathcal M = H\phi\, M\, \phi^* H^* . \f]
-/// Do not call `op.mass_matrix()`.
+/// Do not call soa::Operators::mass_matrix() (`op.mass_matrix()`).
 MatX<double> mass_matrix_operators(const Operators& op);
 
 /// **Exercise 4.4: the mass matrix, column by column, from inverse dynamics.**
@@ -103,8 +103,8 @@ MatX<double> mass_matrix_columns(const Model& m, const VecX<double>& theta);
 /// body n: \f$a(n) \mathrel{+}= \phi^*(n+1,n)\,[0; -g]\f$) and `op.b` \f$= b\f$ (gyroscopic
 /// terms less the external forces). Return (lesson 4, section 3)
 /// \f[ \mathcal C = H\phi\,(M\phi^* a + b), \f]
-/// the hinge forces at \f$\dot\beta = 0\f$. Do not call `op.bias()`, `op.T()`, `op.f()` or
-/// `op.alpha()`.
+/// the hinge forces at \f$\dot\beta = 0\f$. Do not call soa::Operators::bias(),
+/// soa::Operators::T(), soa::Operators::f() or soa::Operators::alpha() (`op.bias()`, ...).
 VecX<double> bias_operators(const Operators& op);
 
 /// **Exercise 4.6: gravity torques from the Jacobians of the centres of mass.**
@@ -134,7 +134,8 @@ VecX<double> gravity_torques(const Model& m, const VecX<double>& theta);
 ///     \phi, \quad \tilde\phi = \phi - I, \f]
 /// the Coriolis matrix with \f$\mathcal C_v\beta = \mathcal C(\theta,\beta) -
 /// \mathcal C(\theta,0)\f$ and \f$\dot{\mathcal M} - 2\,\mathcal C_v\f$ skew-symmetric. Do not
-/// call `es.coriolis_matrix()`, `es.B_dot()`, `es.phi_dot()` or `es.mass_matrix_rate()`.
+/// call soa::EnergyStructure::coriolis_matrix(), soa::EnergyStructure::B_dot(),
+/// soa::EnergyStructure::phi_dot() or soa::EnergyStructure::mass_matrix_rate() (`es.B_dot()`, ...).
 MatX<double> coriolis_matrix_operators(const EnergyStructure& es);
 
 /// **Exercise 4.8: the Coriolis term of a helical hinge.**

@@ -81,7 +81,7 @@ VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 /// \f$C' = RCR^*\f$, then shift (lesson 6, section 2)
 /// \f[ \phi P \phi^* = \begin{pmatrix} A' + LB'^* - B'L - LC'L & B' + LC' \\ (B' + LC')^*
 ///     & C' \end{pmatrix} . \f]
-/// Do not call `phi.matrix()` or soa::transform_symmetric.
+/// Do not call soa::Phi::matrix() (`phi.matrix()`) or soa::transform_symmetric.
 Mat6 transform_symmetric(const Phi& phi, const Mat6& P);
 
 /// **Exercise 6.5: the inter-body forces from the articulated sweeps.**
@@ -149,8 +149,8 @@ std::vector<MatX<double>> P_plus_null_spaces(const Model& m, const VecX<double>&
 /// articulated body relations of lesson 6, section 2: what are \f$z(k)\f$, \f$\epsilon(k)\f$
 /// and \f$\nu(k)\f$ here, and how does the acceleration reach body k from the base?
 /// \f$P(k)\f$, \f$D(k)\f$, \f$G(k)\f$ from soa::articulated_inertias (after soa::update_phi)
-/// are allowed. Do not call soa::forward_dynamics, soa::inverse_dynamics, soa::OperatorsT or
-/// any mass matrix function.
+/// are allowed. Do not call soa::forward_dynamics, soa::inverse_dynamics, soa::OperatorsT,
+/// soa::mass_matrix_crb or soa::mass_matrix_inverse.
 VecX<double> shaken_base(const Model& m, const VecX<double>& theta, const Vec3<double>& a0);
 
 }  // namespace soa::ex06

@@ -12,15 +12,27 @@
 // names the check, the likely mistake or the symptom, where the error is and the case.
 //
 // With --report each exercise runs in a process of its own: an exercise that stops the
-// program (a failed Eigen assertion, an AddressSanitizer or UBSan report, a crash) gets its
-// row, saying what stopped it and at which line of the student's code, and the others are
-// still judged. The full report is kept in $SOA_EXERCISE_CASES/<exercise>-stopped.log.
+// program (a failed Eigen or std::vector assertion, an AddressSanitizer or UBSan report, a
+// crash) gets its row, saying what stopped it and in whose code (the student's line, or the
+// checker's function that was reading the student's result), and the others are still
+// judged. The full report, its stack symbolized, is kept in
+// $SOA_EXERCISE_CASES/<exercise>-stopped.log. Each exercise runs under limits: a time limit
+// (SOA_EXERCISE_TIME_LIMIT seconds, 10 by default: "stopped after 10 s: an endless loop?")
+// and a cap on what it prints (the first lines are shown under its row, the rest is in
+// $SOA_EXERCISE_CASES/<exercise>-output.log).
+//   --warnings FILE     the compiler's diagnostics of the student's code (repeatable): each
+//                       warning is shown under the row of the exercise whose function it is
+//                       in, and that row never says a bare "pass"
 #include <execinfo.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -40,31 +52,80 @@ struct Row {
   bool failed = false;
   bool not_done = false;
   std::string first_failure;  ///< the failures' messages, each ending in a newline
+  std::string notes;          ///< what the exercise printed, or a note on it
 };
 
-// "4.2" -> "level 2, 30 min, uses 4.1", read from the statements in exercises.hpp.
-std::map<std::string, std::string> read_meta(const char* header) {
+// What the statements in exercises.hpp say: "4.2" -> "level 2, 30 min, uses 4.1", and the
+// function each exercise asks for ("newton_euler" -> "4.2": its declaration is the first
+// line under the title that is not a comment).
+struct Statements {
   std::map<std::string, std::string> meta;
-  if (!header) return meta;
+  std::map<std::string, std::string> exercise_of;
+};
+
+Statements read_statements(const char* header) {
+  Statements st;
+  if (!header) return st;
   std::ifstream in(header);
   const std::regex title(R"(\*\*Exercise (\d+\.\d+)[: ])");
   const std::regex level(
       R"(\*Level (\d) of 3, about (\d+) min(?:; uses (\d+\.\d+(?:(?:, | and )\d+\.\d+)*))?)");
-  std::string line, current;
+  const std::regex declaration(R"(([A-Za-z_]\w*)\s*\()");
+  std::string line, current, owner;
   int after = 0;
   while (std::getline(in, line)) {
     std::smatch m;
     if (std::regex_search(line, m, title)) {
-      current = m[1];
+      current = owner = m[1];
       after = 0;
     }
     if (!current.empty() && after++ < 3 && std::regex_search(line, m, level)) {
-      meta[current] = "level " + m[1].str() + ", " + m[2].str() + " min" +
-                      (m[3].matched ? ", uses " + m[3].str() : "");
+      st.meta[current] = "level " + m[1].str() + ", " + m[2].str() + " min" +
+                         (m[3].matched ? ", uses " + m[3].str() : "");
       current.clear();
     }
+    const auto first = line.find_first_not_of(" \t");
+    if (!owner.empty() && first != std::string::npos && line.compare(first, 2, "//") != 0 &&
+        std::regex_search(line, m, declaration)) {
+      st.exercise_of[m[1]] = owner;
+      owner.clear();
+    }
   }
-  return meta;
+  return st;
+}
+
+// The compiler's warnings about the student's code, from the diagnostics of its compile
+// (--warnings): exercise -> its warnings, one a line; "" for those outside the exercises'
+// functions.
+std::map<std::string, std::string> read_warnings(const std::vector<std::string>& files,
+                                                 const Statements& st) {
+  std::map<std::string, std::string> out;
+  // GCC quotes with ' or, in a UTF-8 locale, with ‘ ’.
+  const std::regex in_function(R"(: In (?:member |static member )?function (?:'|‘)(.*)(?:'|’):$)");
+  // The student's file, or a header in which the compiler saw the student's code go wrong.
+  const std::regex warning(R"(^(.*/)?([^/:]+\.[a-z]+):(\d+):\d+: warning: (.*)$)");
+  for (const std::string& file : files) {
+    std::ifstream in(file);
+    std::string line, function;
+    while (std::getline(in, line)) {
+      std::smatch m;
+      if (std::regex_search(line, m, in_function)) {
+        // "soa::Force soa::ex01::apply_phi(const Phi&, ...)" -> "apply_phi"
+        std::string sig = m[1].str();
+        sig = sig.substr(0, sig.find('('));
+        function = sig.substr(
+            sig.find_last_of(": ") == std::string::npos ? 0 : sig.find_last_of(": ") + 1);
+      } else if (std::regex_search(line, m, warning)) {
+        const auto it = st.exercise_of.find(function);
+        const std::string ex = it == st.exercise_of.end() ? "" : it->second;
+        const std::string text = "warning at your line " + m[3].str() + " of " + m[2].str() +
+                                 (function.empty() ? "" : " (in " + function + ")") + ": " +
+                                 m[4].str() + "\n";
+        if (out[ex].find(text) == std::string::npos) out[ex] += text;
+      }
+    }
+  }
+  return out;
 }
 
 class Table : public testing::EmptyTestEventListener {
@@ -102,22 +163,39 @@ class Table : public testing::EmptyTestEventListener {
     return s;
   }
 
-  void print(const std::map<std::string, std::string>& meta) const {
+  void print(const Statements& st, const std::map<std::string, std::string>& warnings) const {
+    const auto loose = warnings.find("");
+    if (loose != warnings.end()) {
+      std::printf("\n  Your code outside the exercises' functions:\n");
+      print_lines(loose->second);
+    }
     std::printf("\n  %-32s %-34s %s\n", "exercise", "", "result");
     for (const auto& name : order_) {
       const Row& r = rows_.at(name);
-      const char* status = !r.failed ? "pass" : r.not_done ? "not done" : "FAIL";
       const std::string l = label(name);
-      const auto it = meta.find(l.substr(0, l.find(' ')));
-      std::printf("  %-32s %-34s %s\n", l.c_str(), it == meta.end() ? "" : it->second.c_str(),
-                  status);
-      if (r.failed && !r.not_done) {
-        std::istringstream text(r.first_failure);
-        std::string line;
-        int lines = 0;
-        while (std::getline(text, line) && lines++ < 80) std::printf("      %s\n", line.c_str());
-      }
+      const std::string id = l.substr(0, l.find(' '));
+      const auto w = warnings.find(id);
+      const int n_warnings =
+          w == warnings.end() ? 0 : int(std::count(w->second.begin(), w->second.end(), '\n'));
+      // A warning is a likely bug that the cases may not reach: never a bare "pass".
+      const std::string status =
+          r.failed     ? (r.not_done ? "not done" : "FAIL")
+          : n_warnings ? "pass, but " + std::to_string(n_warnings) +
+                             (n_warnings == 1 ? " compiler warning" : " compiler warnings")
+                       : "pass";
+      const auto it = st.meta.find(id);
+      std::printf("  %-32s %-34s %s\n", l.c_str(), it == st.meta.end() ? "" : it->second.c_str(),
+                  status.c_str());
+      if (w != warnings.end()) print_lines(w->second);
+      if (r.failed && !r.not_done) print_lines(r.first_failure);
+      print_lines(r.notes);
     }
+  }
+  static void print_lines(const std::string& s) {
+    std::istringstream text(s);
+    std::string line;
+    int lines = 0;
+    while (std::getline(text, line) && lines++ < 80) std::printf("      %s\n", line.c_str());
   }
   int passed() const {
     int n = 0;
@@ -140,6 +218,7 @@ class Table : public testing::EmptyTestEventListener {
     r.not_done = false;
     r.first_failure = message + r.first_failure;
   }
+  void note(const std::string& suite, const std::string& text) { rows_[suite].notes += text; }
   void set(const std::string& suite, const Row& row) {
     if (!rows_.count(suite)) order_.push_back(suite);
     rows_[suite] = row;
@@ -179,34 +258,98 @@ std::string read_all(std::FILE* f) {
   return s;
 }
 
+// A failed assertion's condition, in words: Eigen's (eigen_assert) and libstdc++'s
+// (_GLIBCXX_ASSERTIONS, in the student's code) name indexes, blocks and sizes.
+std::string assertion_kind(const std::string& condition) {
+  if (condition.find("__n < this->size()") != std::string::npos ||
+      condition.find("index >= 0") != std::string::npos ||
+      condition.find("row >= 0") != std::string::npos ||
+      condition.find("i>=0") != std::string::npos)
+    return " (an index out of range)";
+  if (condition.find("startRow") != std::string::npos ||
+      condition.find("start >= 0") != std::string::npos)
+    return " (an index out of range: a block or segment that reaches past the end)";
+  if (condition.find("rows()") != std::string::npos ||
+      condition.find("cols()") != std::string::npos ||
+      condition.find("size()") != std::string::npos)
+    return " (sizes that do not match)";
+  return "";
+}
+
+// One frame of a sanitizer's stack, "    #3 0x55d0 in Check::add<...>(int, ...) /src/x.cpp:216"
+// (or "(binary+0x1f2)" where there is no debug information): the function without its
+// template arguments and parameters, and the file:line when there is one.
+struct Frame {
+  std::string function, where;
+  bool found() const { return !function.empty() || !where.empty(); }
+};
+
+Frame parse_frame(const std::string& line) {
+  Frame f;
+  static const std::regex frame(
+      R"(^ *#[0-9]+ 0x[0-9a-f]+ in (.*?)(?: (/[^ ]*:[0-9]+(?::[0-9]+)?)| \([^()]*\))?$)");
+  std::smatch m;
+  if (!std::regex_match(line, m, frame)) return f;
+  std::string fn = m[1].str();
+  for (std::string before; before != fn;) {  // drop template arguments, innermost first
+    before = fn;
+    fn = std::regex_replace(fn, std::regex("<[^<>]*>"), "");
+  }
+  fn = fn.substr(0, fn.find('('));
+  f.function = fn.substr(fn.rfind(' ') == std::string::npos ? 0 : fn.rfind(' ') + 1);
+  f.where = m[2].str();
+  return f;
+}
+
+// The project-relative part of a frame's file:line, from the match of \p tail on (and its
+// parent folder with \p parent: "exercises/03-x/exercises.cpp:12").
+std::string shorter(const std::string& where, const std::regex& tail, bool parent) {
+  std::smatch m;
+  if (!std::regex_search(where, m, tail)) return where;
+  const std::size_t at = std::size_t(m.position(0));
+  const auto dir = parent && at > 0 ? where.rfind('/', at - 1) : std::string::npos;
+  return where.substr(dir == std::string::npos ? at + 1 : dir + 1);
+}
+
 // What stopped an exercise, from its stderr: the reason (assertion, sanitizer report) and
-// the first frame in the student's code (a file under exercises/).
+// whose code it stopped in: the first frame in the student's code (a file under exercises/),
+// else the checker's (tests/), whose stack then holds no line of the student's.
 std::string stopped_message(const std::string& err, const std::string& log) {
   std::istringstream in(err);
-  std::string line, reason, where;
+  std::string line, reason;
+  Frame student, checker;
   while (std::getline(in, line)) {
     if (reason.empty()) {
       std::size_t p;
-      if ((p = line.find("Assertion `")) != std::string::npos)
-        reason = "assertion " + line.substr(p + 10, line.find_last_not_of(". ") - p - 9) +
-                 (line.find("index") != std::string::npos ? " (an index out of range)"
-                  : line.find("rows") != std::string::npos || line.find("cols") != std::string::npos
-                      ? " (sizes that do not match)"
-                      : "");
-      else if ((p = line.find("ERROR: AddressSanitizer: ")) != std::string::npos)
+      if ((p = line.find("Assertion `")) != std::string::npos ||
+          (p = line.find("Assertion '")) != std::string::npos) {
+        const std::string condition = line.substr(p + 11, line.rfind(" failed") == std::string::npos
+                                                              ? std::string::npos
+                                                              : line.rfind(" failed") - p - 12);
+        reason = "assertion '" + condition + "' failed" + assertion_kind(condition);
+      } else if ((p = line.find("ERROR: AddressSanitizer: ")) != std::string::npos) {
         reason = "AddressSanitizer: " + line.substr(p + 25, line.find(" on ", p) - p - 25);
-      else if ((p = line.find("runtime error: ")) != std::string::npos)
+      } else if ((p = line.find("runtime error: ")) != std::string::npos) {
         reason = "UBSan: " + line.substr(p + 15);
+      }
     }
-    const auto e = line.find("/exercises/");
-    if (where.empty() && e != std::string::npos && line.find(".cpp:") != std::string::npos &&
-        line.find("/tests/exercises/") == std::string::npos) {
-      const auto in_fn = line.find(" in ");
-      std::string fn = in_fn == std::string::npos ? "" : line.substr(in_fn + 4, e - in_fn - 4);
-      fn = fn.substr(0, fn.rfind(' '));
-      if (fn.find('(') != std::string::npos) fn = fn.substr(0, fn.find('('));
-      where = line.substr(e + 1);
-      if (!fn.empty()) where += " (in " + fn + ")";
+    // The student's code: its functions (namespace soa::exNN) in a lesson's folder NN-topic/
+    // (exercises/, or the solutions when the checker itself is tested). The checker's: the
+    // tests (ExerciseL_K_*::TestBody) and soa::test, in tests/exercises/ and tests/support/.
+    const Frame f = parse_frame(line);
+    if (!f.found() || student.found()) continue;
+    static const std::regex student_file(R"(/[0-9][0-9]-[A-Za-z0-9-]+/[^/ ]+\.[ch]pp:[0-9])");
+    static const std::regex checker_file(R"(/tests/(exercises|support)/[^/ ]+\.[ch]pp:[0-9])");
+    static const std::regex student_function("^soa::ex[0-9]+::");
+    static const std::regex checker_function("^soa::test::|^Exercise[0-9]+_[0-9]+_.*::TestBody$");
+    if (std::regex_search(f.where, student_file) ||
+        std::regex_search(f.function, student_function)) {
+      student = f;
+      student.where = shorter(f.where, student_file, true);
+    } else if (!checker.found() && (std::regex_search(f.where, checker_file) ||
+                                    std::regex_search(f.function, checker_function))) {
+      checker = f;
+      checker.where = shorter(f.where, std::regex("/tests/"), false);
     }
   }
   if (reason.empty()) {
@@ -215,9 +358,16 @@ std::string stopped_message(const std::string& err, const std::string& log) {
                                     : err.substr(p + 13, err.find('\n', p) - p - 13);
   }
   std::string msg = "stopped: " + reason + "\n";
-  msg += where.empty() ? "  (no frame in your exercises.cpp: the stack is in the log)\n"
-                       : "  at your line " + where + "\n";
-  if (!log.empty()) msg += "  the full report: " + log + "\n";
+  if (student.found())
+    msg += "  at your line " + (student.where.empty() ? "(no line information)" : student.where) +
+           (student.function.empty() ? "" : " (in " + student.function + ")") + "\n";
+  else if (checker.found())
+    msg += "  the checker stopped in " + checker.function + " while reading your result" +
+           (checker.where.empty() ? "" : " (" + checker.where + ")") +
+           ": no line of your code is on the stack\n";
+  else
+    msg += "  no line of your code or of the checker is on the stack\n";
+  if (!log.empty()) msg += "  the full report, with the stack: " + log + "\n";
   return msg;
 }
 
@@ -255,8 +405,56 @@ std::string forbidden_calls(const std::string& id) {
          "yourself\n";
 }
 
-// --report: every exercise (test suite) in a child process of its own.
-void run_isolated(Table& table) {
+// The limits of one exercise's run.
+struct Limits {
+  int seconds = 10;                         ///< wall time (SOA_EXERCISE_TIME_LIMIT)
+  rlim_t output_bytes = 64L * 1024 * 1024;  ///< what it may print (RLIMIT_FSIZE)
+  int shown_lines = 12;                     ///< printed lines shown under its row
+};
+
+// Waits for the child \p pid at most \p seconds; kills it after that. False if killed.
+bool wait_for(pid_t pid, int seconds, int& status) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  while (true) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) return true;
+    if (std::chrono::steady_clock::now() >= end) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      return false;
+    }
+    usleep(2000);
+  }
+}
+
+// What the exercise printed, under its row: the first lines, and the rest in a file.
+std::string printed_note(const std::string& text, const std::string& log, int shown) {
+  if (text.empty()) return "";
+  const int lines = int(std::count(text.begin(), text.end(), '\n')) + (text.back() != '\n');
+  std::string note = "your code printed " + std::to_string(lines) +
+                     (lines == 1 ? " line" : " lines") + (lines > shown ? ", the first:" : ":") +
+                     "\n";
+  std::istringstream in(text);
+  std::string line;
+  for (int i = 0; i < shown && std::getline(in, line); ++i)
+    note += "  | " + (line.size() > 160 ? line.substr(0, 160) + " ..." : line) + "\n";
+  if (lines > shown && !log.empty()) note += "  all of it: " + log + "\n";
+  return note;
+}
+
+// Writes \p text to \p dir/<name>; the path, or "" when there is no such folder.
+std::string keep(const char* dir, const std::string& name, const std::string& text) {
+  if (!dir || !*dir) return "";
+  const std::string path = std::string(dir) + "/" + name;
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return "";
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+  return path;
+}
+
+// --report: every exercise (test suite) in a child process of its own, under Limits.
+void run_isolated(Table& table, const Limits& limits) {
   const std::string filter = GTEST_FLAG_GET(filter);
   testing::UnitTest& unit = *testing::UnitTest::GetInstance();
   std::vector<std::string> suites;
@@ -270,16 +468,23 @@ void run_isolated(Table& table) {
   }
   const char* cases = std::getenv("SOA_EXERCISE_CASES");
   for (const std::string& suite : suites) {
+    const std::string name = suite.rfind("Exercise", 0) == 0 ? suite.substr(8) : suite;
     std::FILE* err = std::tmpfile();
     std::FILE* out = std::tmpfile();
+    std::FILE* printed = std::tmpfile();
     std::fflush(stdout);
     const pid_t pid = fork();
     if (pid == 0) {
       dup2(fileno(err), 2);
+      dup2(fileno(printed), 1);
+      setvbuf(stdout, nullptr, _IOLBF, 0);
+      const rlimit fsize{limits.output_bytes, limits.output_bytes};
+      setrlimit(RLIMIT_FSIZE, &fsize);
       for (int sig : {SIGABRT, SIGSEGV, SIGFPE, SIGBUS, SIGILL}) std::signal(sig, on_fatal_signal);
       GTEST_FLAG_SET(filter, suite + ".*");
       const int failed = RUN_ALL_TESTS();  // the row says it
       (void)failed;
+      std::fflush(stdout);
       const std::string label = Table::label(suite);
       const std::string calls = forbidden_calls(label.substr(0, label.find(' ')));
       if (!calls.empty()) table.forbid(suite, calls);
@@ -289,31 +494,35 @@ void run_isolated(Table& table) {
       _exit(0);
     }
     int status = 0;
-    waitpid(pid, &status, 0);
+    const bool in_time = wait_for(pid, limits.seconds, status);
     const std::string row = read_all(out);
+    const std::string text = read_all(printed);
+    const std::string output_log = keep(cases, name + "-output.log", text);
     Row r;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !row.empty()) {
+    if (in_time && WIFEXITED(status) && WEXITSTATUS(status) == 0 && !row.empty()) {
       r.failed = row[0] == '1';
       r.not_done = row.size() > 2 && row[2] == '1';
       r.first_failure = row.substr(std::min(row.size(), row.find('\n') + 1));
     } else {
-      const std::string text = read_all(err);
-      std::string log;
-      if (cases && *cases) {
-        std::string name = suite.rfind("Exercise", 0) == 0 ? suite.substr(8) : suite;
-        log = std::string(cases) + "/" + name + "-stopped.log";
-        if (std::FILE* f = std::fopen(log.c_str(), "w")) {
-          std::fwrite(text.data(), 1, text.size(), f);
-          std::fclose(f);
-        } else {
-          log.clear();
-        }
-      }
       r.failed = true;
-      r.first_failure = stopped_message(text, log);
+      if (!in_time)
+        r.first_failure = "stopped after " + std::to_string(limits.seconds) +
+                          " s: an endless loop? (a loop whose condition never changes, or an "
+                          "index that never reaches its end)\n";
+      else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ)
+        r.first_failure = "stopped: your code printed more than " +
+                          std::to_string(limits.output_bytes >> 20) +
+                          " MB (an endless loop that prints?)\n";
+      else {
+        const std::string report_text = read_all(err);
+        r.first_failure =
+            stopped_message(report_text, keep(cases, name + "-stopped.log", report_text));
+      }
     }
+    r.notes = printed_note(text, output_log, limits.shown_lines);
     std::fclose(err);
     std::fclose(out);
+    std::fclose(printed);
     table.set(suite, r);
   }
 }
@@ -323,12 +532,15 @@ void run_isolated(Table& table) {
 int main(int argc, char** argv) {
   bool report = false, expect_all_fail = false;
   const char* header = nullptr;
+  std::vector<std::string> warning_files;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
     if (std::strcmp(argv[i], "--report") == 0)
       report = true;
     else if (std::strcmp(argv[i], "--header") == 0 && i + 1 < argc)
       header = argv[++i];
+    else if (std::strcmp(argv[i], "--warnings") == 0 && i + 1 < argc)
+      warning_files.push_back(argv[++i]);
     else if (std::strcmp(argv[i], "--expect-all-fail") == 0)
       expect_all_fail = true;
     else
@@ -345,12 +557,16 @@ int main(int argc, char** argv) {
   auto* table = new Table;
   testing::UnitTest::GetInstance()->listeners().Append(table);
   soa::test::quiet() = report || expect_all_fail;
+  Limits limits;
+  if (const char* t = std::getenv("SOA_EXERCISE_TIME_LIMIT"); t && std::atoi(t) > 0)
+    limits.seconds = std::atoi(t);
   int rc = 0;
   if (report)
-    run_isolated(*table);
+    run_isolated(*table, limits);
   else
     rc = RUN_ALL_TESTS();
-  table->print(read_meta(header));
+  const Statements statements = read_statements(header);
+  table->print(statements, read_warnings(warning_files, statements));
   std::printf("  %d of %d exercises pass\n", table->passed(), table->total());
   if (report) return 0;
   if (expect_all_fail) return table->passed() == 0 && table->total() > 0 ? 0 : 1;

@@ -46,12 +46,22 @@ function(soa_planted_solutions nn dir list_file)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/solutions.cpp)
   file(WRITE ${out}.new "#include \"planted.hpp\"\n#line 1 \"${solution}\"\n${_soa_src}")
   file(COPY_FILE ${out}.new ${out} ONLY_IF_DIFFERENT)
+  # The planted copy as a student's folder (make exercises EXERCISES=<...>/planted, the test of
+  # the exercise configuration, tests/exercises/student_config.sh): its header beside it, and
+  # its mistakes listed one a line as <id> TAB <expected report regex>.
+  file(COPY_FILE ${PROJECT_SOURCE_DIR}/tests/support/planted.hpp
+       ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/planted.hpp ONLY_IF_DIFFERENT)
+  set(listing "")
+  foreach(full IN LISTS _soa_plants)
+    string(APPEND listing "${full}\t${_soa_expect_${full}}\n")
+  endforeach()
+  file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/plants.tsv "${listing}")
   add_library(solutions_${nn}_planted STATIC ${out})
   target_include_directories(solutions_${nn}_planted
     PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${PROJECT_SOURCE_DIR}/exercises/${dir}
             ${PROJECT_SOURCE_DIR}/exercises ${PROJECT_SOURCE_DIR}/solutions/${dir})
   target_link_libraries(solutions_${nn}_planted PUBLIC soa)
-  soa_check_target(solutions_${nn}_planted plain)
+  soa_check_target(solutions_${nn}_planted student)
   # The lesson's solution tests link this copy (with SOA_PLANT unset it is the solutions,
   # as written): one compile of the solutions serves both, and solutions_NN itself is built
   # only on request.

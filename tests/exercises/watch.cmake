@@ -13,6 +13,12 @@
 #    soa_watch_hit[i], jump to X; and the table of which exercise forbids which function.
 #    exercise_main reads the flags after each exercise and fails the exercise that made a
 #    forbidden call, naming the function.
+# 4. Inline members and templates leave no undefined symbol: the student's code compiled once
+#    more at -O0 -fno-inline -ffunction-sections (-DCALLS_OBJECTS=<a|b>, read with
+#    -DOBJDUMP=<objdump>) keeps each call as a relocation in its caller's section. Each
+#    exercise's function, and the student's own functions it calls, are searched for the
+#    calls its statement forbids; such a call is flagged before the program runs.
+cmake_policy(VERSION 3.25)
 foreach(v HEADER ARCHIVE OUT_ARCHIVE OUT_SRC NM OBJCOPY CXXFILT)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "watch.cmake: -D${v}=... is missing")
@@ -30,6 +36,7 @@ foreach(t IN LISTS titles)
 endforeach()
 set(rest "${text}")
 set(rules "")  # "exercise|token" entries
+set(exercise_functions "")
 foreach(ex IN LISTS exercises)
   string(FIND "${rest}" "**Exercise ${ex}:" start)
   if(start EQUAL -1)
@@ -43,15 +50,48 @@ foreach(ex IN LISTS exercises)
   else()
     string(SUBSTRING "${after}" 0 ${next} block)
   endif()
+  # The function the exercise asks for: the first line of the block that is not a comment.
+  if(block MATCHES "\n[^\n]*[ *&]([A-Za-z_][A-Za-z0-9_]*)\\(")
+    set(function_of_${CMAKE_MATCH_1} ${ex})
+    list(APPEND exercise_functions ${CMAKE_MATCH_1})
+  endif()
+  # "Do not call soa::X ..." sentences, and "Reproduces [the ... of] soa::X": the lessons'
+  # rule is that an exercise never calls what it reproduces.
   string(REGEX MATCHALL "[Dd]o not (call|use) [^.]*(\\.[^ \n][^.]*)*" sentences "${block}")
+  string(REGEX MATCHALL "Reproduces (the [a-z -]+ of )?soa::[A-Za-z_][A-Za-z0-9_:]*[A-Za-z0-9_]"
+         reproduces "${block}")
+  list(APPEND sentences ${reproduces})
   foreach(s IN LISTS sentences)
-    string(REGEX MATCHALL "soa::[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*" tokens "${s}")
+    string(REGEX MATCHALL
+           "soa::[A-Za-z_][A-Za-z0-9_]*(::(operator[*+-]|[A-Za-z_][A-Za-z0-9_]*))*(\\(const [A-Za-z_]+&\\))?"
+           tokens "${s}")
     foreach(tok IN LISTS tokens)
       list(APPEND rules "${ex}|${tok}")
     endforeach()
   endforeach()
 endforeach()
 list(REMOVE_DUPLICATES rules)
+
+# The regex of a rule's token in a demangled name: soa::Phi also matches soa::PhiT<double>
+# (the course's aliases of the class templates); a class matches any of its members.
+# A token "soa::f(const X&)" names one overload: the one whose first parameter is soa::X.
+function(token_pattern tok out)
+  set(first_param "")
+  if(tok MATCHES "^(.*)\\(const ([A-Za-z_]+)&\\)$")
+    set(tok "${CMAKE_MATCH_1}")
+    set(first_param "soa::${CMAKE_MATCH_2}[<,)& ]")
+  endif()
+  string(REGEX REPLACE "^soa::" "" inner "${tok}")
+  string(REGEX REPLACE "([*+])" "\\\\\\1" inner "${inner}")
+  string(REPLACE "::" "T?(<[^()]*>)?::" inner "${inner}")
+  set(pattern "soa::${inner}")
+  if(tok MATCHES "^soa::[A-Z][A-Za-z0-9_]*$")  # a class: any of its members
+    set(pattern "${pattern}T?(<[^()]*>)?::")
+  else()
+    set(pattern "(^|[ (*&,])${pattern}(<[^()]*>)?\\(${first_param}")
+  endif()
+  set(${out} "${pattern}" PARENT_SCOPE)
+endfunction()
 
 # 2. The student's references to them.
 execute_process(COMMAND ${NM} -u --format=posix ${ARCHIVE} OUTPUT_VARIABLE nm_out
@@ -87,15 +127,7 @@ if(mangled)
     foreach(rule IN LISTS rules)
       string(REGEX REPLACE "\\|.*" "" ex "${rule}")
       string(REGEX REPLACE ".*\\|" "" tok "${rule}")
-      string(REGEX REPLACE "^soa::" "" inner "${tok}")
-      string(REPLACE "::" "(<[^()]*>)?::" inner "${inner}")
-      set(pattern "soa::${inner}")
-      string(REGEX MATCH "[A-Za-z0-9_]+$" last "${tok}")
-      if(last MATCHES "^[A-Z]")
-        set(pattern "${pattern}(<[^()]*>)?::")  # a class: any of its member functions
-      else()
-        set(pattern "(^|[ (*&,])${pattern}(<[^()]*>)?\\(")
-      endif()
+      token_pattern("${tok}" pattern)
       if(d MATCHES "${pattern}")
         list(APPEND forbidden_in ${ex})
         if(NOT forbidden_tok)
@@ -116,6 +148,140 @@ if(mangled)
   endforeach()
 endif()
 
+# 4. The forbidden calls seen in the code itself, inline members and templates included.
+set(static_hits "")
+if(DEFINED CALLS_OBJECTS AND DEFINED OBJDUMP)
+  string(REPLACE "|" ";" objects "${CALLS_OBJECTS}")
+  set(dump "")
+  foreach(obj IN LISTS objects)
+    execute_process(COMMAND ${OBJDUMP} -r ${obj} OUTPUT_VARIABLE out RESULT_VARIABLE rc
+                    ERROR_QUIET)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "watch.cmake: ${OBJDUMP} -r failed on ${obj}")
+    endif()
+    string(APPEND dump "${out}")
+  endforeach()
+  # The functions' sections, "RELOCATION RECORDS FOR [.text.<function>]:" each followed by
+  # one line a reference ("<offset> <type> <symbol>[+-addend]") and a blank line.
+  string(REPLACE ";" "" dump "${dump}")
+  string(REGEX MATCHALL "RELOCATION RECORDS FOR \\[\\.text\\.[^]]+\\]" headers "${dump}")
+  set(callers "")
+  foreach(h IN LISTS headers)
+    string(REGEX REPLACE "^RELOCATION RECORDS FOR \\[\\.text\\.([^]]+)\\]$" "\\1" c "${h}")
+    list(APPEND callers "${c}")
+  endforeach()
+  # Demangled, without return types and arguments: "soa::ex06::transform_symmetric".
+  function(demangle symbols)
+    string(REPLACE ";" "\n" symbol_lines "${symbols}")
+    file(WRITE ${OUT_SRC}.calls "${symbol_lines}\n")
+    execute_process(COMMAND ${CXXFILT} INPUT_FILE ${OUT_SRC}.calls OUTPUT_VARIABLE demangled)
+    string(REPLACE ";" "" demangled "${demangled}")
+    string(REPLACE "\n" ";" demangled "${demangled}")
+    foreach(sym d IN ZIP_LISTS symbols demangled)
+      set(name_${sym} "${d}" PARENT_SCOPE)
+    endforeach()
+  endfunction()
+  demangle("${callers}")
+  # The student's own functions: those defined in this code outside the library, Eigen and
+  # the standard library (the library's inline functions are defined here too, at -O0).
+  set(own "")
+  foreach(c IN LISTS callers)
+    # The qualified name alone: template arguments, return type and parameters left out.
+    string(REPLACE "(anonymous namespace)" "anonymous" d "${name_${c}}")
+    set(before "")
+    while(NOT d STREQUAL before)
+      set(before "${d}")
+      string(REGEX REPLACE "<[^<>]*>" "" d "${d}")
+    endwhile()
+    string(REGEX REPLACE "\\(.*" "" d "${d}")
+    string(REGEX REPLACE ".* " "" d "${d}")
+    if(d MATCHES "^soa::ex[0-9]+::([A-Za-z_][A-Za-z0-9_]*)")
+      list(APPEND own ${c})
+      set(exercise_fn_${c} ${CMAKE_MATCH_1})
+    elseif(NOT d MATCHES "^(soa|Eigen|std|__gnu_cxx)::")
+      list(APPEND own ${c})
+    endif()
+  endforeach()
+  # What each of the student's functions calls.
+  set(callees "")
+  foreach(c IN LISTS own)
+    string(FIND "${dump}" "RELOCATION RECORDS FOR [.text.${c}]:" at)
+    string(SUBSTRING "${dump}" ${at} -1 block)
+    string(FIND "${block}" "\n\n" end)
+    string(SUBSTRING "${block}" 0 ${end} block)
+    string(REGEX MATCHALL "\n[0-9a-f]+ +[A-Z0-9_]+ +(\\.text\\.)?_Z[A-Za-z0-9_.]+" refs "${block}")
+    set(calls_${c} "")
+    foreach(r IN LISTS refs)
+      string(REGEX REPLACE ".* (\\.text\\.)?(_Z[A-Za-z0-9_]+).*" "\\2" callee "${r}")
+      list(APPEND calls_${c} ${callee})
+    endforeach()
+    list(REMOVE_DUPLICATES calls_${c})
+    list(APPEND callees ${calls_${c}})
+  endforeach()
+  list(REMOVE_DUPLICATES callees)
+  set(unnamed "")
+  foreach(callee IN LISTS callees)
+    if(NOT DEFINED name_${callee})
+      list(APPEND unnamed ${callee})
+    endif()
+  endforeach()
+  if(unnamed)
+    demangle("${unnamed}")
+  endif()
+  foreach(c IN LISTS own)
+    set(ex "")
+    if(DEFINED exercise_fn_${c} AND DEFINED function_of_${exercise_fn_${c}})
+      set(ex ${function_of_${exercise_fn_${c}}})
+    endif()
+    if(NOT ex)
+      continue()
+    endif()
+    # Everything this exercise's function reaches through the student's own functions.
+    set(reach ${c})
+    set(todo ${c})
+    while(todo)
+      list(POP_FRONT todo f)
+      foreach(callee IN LISTS calls_${f})
+        if(callee IN_LIST own AND NOT callee IN_LIST reach)
+          list(APPEND reach ${callee})
+          list(APPEND todo ${callee})
+        endif()
+      endforeach()
+    endwhile()
+    foreach(f IN LISTS reach)
+      foreach(callee IN LISTS calls_${f})
+        if(callee IN_LIST own)
+          continue()
+        endif()
+        foreach(rule IN LISTS rules)
+          string(REGEX REPLACE "\\|.*" "" rule_ex "${rule}")
+          if(NOT rule_ex STREQUAL ex)
+            continue()
+          endif()
+          string(REGEX REPLACE ".*\\|" "" tok "${rule}")
+          token_pattern("${tok}" pattern)
+          if(name_${callee} MATCHES "${pattern}")
+            list(APPEND static_hits "${ex}|${tok}")
+          endif()
+        endforeach()
+      endforeach()
+    endforeach()
+  endforeach()
+  list(REMOVE_DUPLICATES static_hits)
+endif()
+set(hit_init "")
+if(count GREATER 0)
+  string(REPEAT "0, " ${count} hit_init)
+endif()
+foreach(hit IN LISTS static_hits)
+  string(REGEX REPLACE "\\|.*" "" ex "${hit}")
+  string(REGEX REPLACE ".*\\|" "" tok "${hit}")
+  string(APPEND names "  \"${tok}\",\n")
+  string(APPEND owners "  \" ${ex} \",\n")
+  string(APPEND hit_init "1, ")
+  math(EXPR count "${count} + 1")
+endforeach()
+
 # 3. The renamed archive and the trampolines.
 file(WRITE ${OUT_SRC}.map "${map}")
 execute_process(COMMAND ${OBJCOPY} --redefine-syms=${OUT_SRC}.map ${ARCHIVE} ${OUT_ARCHIVE}.new
@@ -132,7 +298,7 @@ file(WRITE ${OUT_SRC}.new
 "// Generated by tests/exercises/watch.cmake from ${HEADER}: the forbidden library calls the
 // student's code makes, each through a trampoline that raises its flag.
 extern \"C\" {
-unsigned char soa_watch_hit[${n}];
+unsigned char soa_watch_hit[${n}] = {${hit_init}};
 extern const int soa_watch_count = ${count};
 extern const char* const soa_watch_name[] = {
 ${names}  nullptr};

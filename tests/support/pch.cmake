@@ -17,17 +17,25 @@ set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
 option(SOA_SANITIZE_STUDENT "ASan + UBSan for the exercises' code (make exercises)" OFF)
 set(SOA_STUDENT_SAN "")
 if(SOA_SANITIZE_STUDENT)
-  # Eigen frees with its own aligned allocator under ASan (__SANITIZE_ADDRESS__) but with
-  # free() elsewhere: the instrumented and the plain code must agree, and malloc is 16-byte
-  # aligned with or without ASan on 64-bit Linux.
+  # The instrumented and the plain code share Eigen's matrices: the library makes every
+  # translation unit use the same heap allocator (EIGEN_MALLOC_ALREADY_ALIGNED, lib/).
   set(SOA_STUDENT_SAN -fsanitize=address,undefined -fno-sanitize-recover=all
-                      -fno-omit-frame-pointer -DEIGEN_MALLOC_ALREADY_ALIGNED=1)
+                      -fno-omit-frame-pointer)
 endif()
+
+# The student's code (and the solutions, compiled as a student's) is also compiled with the
+# warnings that catch a student's usual bugs, shown in the exercise's row by make exercises.
+# All the `plain` code (lessons too, sharing its precompiled header) checks std::vector's
+# indexes (libstdc++'s assertions: ABI-neutral, the library itself does not check).
+set(SOA_STUDENT_WARNINGS -Wuninitialized -Wmaybe-uninitialized -Wshadow=local -Wlogical-op
+                         -Wduplicated-cond -Wduplicated-branches)
+set(SOA_PLAIN_DEFS -D_GLIBCXX_ASSERTIONS)
 
 set(SOA_PCH_DIR ${CMAKE_CURRENT_LIST_DIR})
 # The library alone: lessons, exercises, solutions.
 add_library(soa_pch_plain OBJECT ${SOA_PCH_DIR}/pch_source.cpp)
-target_compile_options(soa_pch_plain PRIVATE ${SOA_CHECK_OPT} ${SOA_STUDENT_SAN})
+target_compile_options(soa_pch_plain PRIVATE ${SOA_CHECK_OPT} ${SOA_PLAIN_DEFS}
+                                             ${SOA_STUDENT_SAN})
 target_link_libraries(soa_pch_plain PRIVATE soa)
 target_precompile_headers(soa_pch_plain PRIVATE <Eigen/Dense> <Eigen/Eigenvalues> <soa/soa.hpp>)
 # GoogleTest and the library: the test executables and the exercise tests.
@@ -37,9 +45,39 @@ target_link_libraries(soa_pch_test PRIVATE soa GTest::gtest)
 target_precompile_headers(soa_pch_test PRIVATE <gtest/gtest.h> <Eigen/Dense> <Eigen/Eigenvalues>
                           <soa/soa.hpp>)
 
-# soa_check_target(<target> plain|test): the check flags and the precompiled header.
+# Whether this compiler's AddressSanitizer and UBSan build and run here (the probes of the
+# student's loop, tests/CMakeLists.txt, use them as make exercises does).
+include(CheckCXXSourceRuns)
+set(CMAKE_REQUIRED_FLAGS -fsanitize=address,undefined)
+set(CMAKE_REQUIRED_LINK_OPTIONS -fsanitize=address,undefined)
+check_cxx_source_runs("int main() { return 0; }" SOA_HAVE_STUDENT_SAN)
+unset(CMAKE_REQUIRED_FLAGS)
+unset(CMAKE_REQUIRED_LINK_OPTIONS)
+
+# soa_student_target(<target>): the student's code as make exercises compiles it: the check
+# flags with line information, the student's warnings, and ASan + UBSan where they run; no
+# precompiled header, so that the sanitizers need no header of their own.
+function(soa_student_target target)
+  target_compile_options(${target} PRIVATE ${SOA_CHECK_OPT} -g ${SOA_PLAIN_DEFS}
+                         ${SOA_STUDENT_WARNINGS})
+  if(SOA_HAVE_STUDENT_SAN)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined
+                           -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    target_link_options(${target} INTERFACE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# soa_check_target(<target> plain|student|test): the check flags and the precompiled header;
+# `student` is `plain` with the student's warnings (exercises and solutions).
 function(soa_check_target target kind)
   target_compile_options(${target} PRIVATE ${SOA_CHECK_OPT})
+  if(kind STREQUAL "student")
+    target_compile_options(${target} PRIVATE ${SOA_STUDENT_WARNINGS})
+    set(kind plain)
+  endif()
+  if(kind STREQUAL "plain")
+    target_compile_options(${target} PRIVATE ${SOA_PLAIN_DEFS})
+  endif()
   if(kind STREQUAL "plain" AND SOA_STUDENT_SAN)
     target_compile_options(${target} PRIVATE ${SOA_STUDENT_SAN})
     target_link_options(${target} INTERFACE -fsanitize=address,undefined)

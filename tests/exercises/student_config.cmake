@@ -1,0 +1,127 @@
+# The exercise configuration, tested as students run it: `make exercises` itself (its build
+# tree, flags, sanitizers, assertions and call watch, native or not as the Makefile sets them),
+# in a build tree of its own, on three sets of code:
+#   1. the reference solutions (the planted copy, no mistake switched on): every lesson
+#      "N of N exercises pass";
+#   2. one planted mistake per lesson (SOA_PLANT, all in one run): its row names it, as the
+#      lesson's exercises.NN.planted.* test expects;
+#   3. the stubs of every lesson still as shipped: every row "not done", "0 of N".
+#   cmake -DSRC=<source dir> -DWORK=<build dir> -DPLANTED=<dir of NN-topic/ planted copies>
+#         "-DPRISTINE=<lessons NN whose stubs are as shipped>" -P student_config.cmake
+cmake_minimum_required(VERSION 3.25)
+foreach(var SRC WORK PLANTED)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "student_config.cmake: -D${var}=... is missing")
+  endif()
+endforeach()
+find_program(MAKE NAMES make gmake REQUIRED)
+string(REPLACE "," ";" PRISTINE "${PRISTINE}")
+set(failures 0)
+
+# make exercises with EXERCISES=<dir> and the given make arguments; its output in <out>.
+function(make_exercises dir out)
+  # The outer make's jobserver is not this make's: the build's parallelism is its own -j.
+  execute_process(
+    COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MFLAGS --unset=MAKELEVEL ${ARGN}
+            ${MAKE} --no-print-directory -C ${SRC} exercises EX_DIR=${WORK} EXERCISES=${dir}
+    OUTPUT_VARIABLE text ERROR_VARIABLE text RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message("make exercises EXERCISES=${dir} exited ${rc}:\n${text}")
+    math(EXPR f "${failures} + 1")
+    set(failures ${f} PARENT_SCOPE)
+  endif()
+  set(${out} "${text}" PARENT_SCOPE)
+endfunction()
+
+# The report of lesson <nn> within the output of make exercises.
+function(lesson_report text nn out)
+  string(FIND "${text}" "== Lesson ${nn} exercises" at)
+  if(at EQUAL -1)
+    set(${out} "" PARENT_SCOPE)
+    return()
+  endif()
+  string(SUBSTRING "${text}" ${at} -1 rest)
+  string(SUBSTRING "${rest}" 4 -1 after)
+  string(FIND "${after}" "== Lesson " next)
+  if(NOT next EQUAL -1)
+    math(EXPR next "${next} + 4")
+    string(SUBSTRING "${rest}" 0 ${next} rest)
+  endif()
+  set(${out} "${rest}" PARENT_SCOPE)
+endfunction()
+
+macro(fail what)
+  message("FAIL: ${what}")
+  math(EXPR failures "${failures} + 1")
+endmacro()
+
+file(GLOB lessons RELATIVE ${PLANTED} ${PLANTED}/[0-9][0-9]-*)
+list(SORT lessons)
+list(LENGTH lessons n_lessons)
+if(n_lessons EQUAL 0)
+  message(FATAL_ERROR "no planted lessons under ${PLANTED}")
+endif()
+
+# 1. The solutions.
+make_exercises(${PLANTED} text)
+foreach(dir IN LISTS lessons)
+  string(SUBSTRING "${dir}" 0 2 nn)
+  lesson_report("${text}" ${nn} report)
+  if(report MATCHES "\n  ([0-9]+) of ([0-9]+) exercises pass" AND CMAKE_MATCH_1 EQUAL CMAKE_MATCH_2)
+    message("lesson ${nn}, the solutions: ${CMAKE_MATCH_1} of ${CMAKE_MATCH_2} exercises pass")
+  else()
+    fail("lesson ${nn}, the solutions, in the exercise configuration:\n${report}")
+  endif()
+endforeach()
+
+# 2. The first planted mistake of each lesson, all switched on in one run, each named in its
+#    lesson's row.
+set(ids "")
+foreach(dir IN LISTS lessons)
+  file(STRINGS ${PLANTED}/${dir}/plants.tsv plants LIMIT_COUNT 1)
+  string(FIND "${plants}" "\t" tab)
+  string(SUBSTRING "${plants}" 0 ${tab} id_${dir})
+  math(EXPR tab "${tab} + 1")
+  string(SUBSTRING "${plants}" ${tab} -1 expect_${dir})
+  list(APPEND ids ${id_${dir}})
+endforeach()
+string(REPLACE ";" "," ids "${ids}")
+make_exercises(${PLANTED} text SOA_PLANT=${ids})
+foreach(dir IN LISTS lessons)
+  string(SUBSTRING "${dir}" 0 2 nn)
+  lesson_report("${text}" ${nn} report)
+  if(report MATCHES "${expect_${dir}}")
+    message("lesson ${nn}, planted ${id_${dir}}: named")
+  else()
+    fail("lesson ${nn}, planted ${id_${dir}}: the report does not match '${expect_${dir}}':\n${report}")
+  endif()
+endforeach()
+
+# 3. The stubs as shipped.
+make_exercises(${SRC}/exercises text)
+foreach(dir IN LISTS lessons)
+  string(SUBSTRING "${dir}" 0 2 nn)
+  if(NOT nn IN_LIST PRISTINE)
+    message("lesson ${nn}, the stubs: not as shipped, not judged")
+    continue()
+  endif()
+  lesson_report("${text}" ${nn} report)
+  string(REGEX MATCHALL "\n  [0-9]+\\.[0-9]+ [^\n]*" rows "${report}")
+  set(bad "")
+  foreach(row IN LISTS rows)
+    if(NOT row MATCHES "not done$")
+      string(APPEND bad "${row}")
+    endif()
+  endforeach()
+  list(LENGTH rows n_rows)
+  if(n_rows GREATER 0 AND bad STREQUAL "" AND report MATCHES "\n  0 of ${n_rows} exercises pass")
+    message("lesson ${nn}, the stubs: ${n_rows} of ${n_rows} not done")
+  else()
+    fail("lesson ${nn}, the stubs: every row must say \"not done\":${bad}\n${report}")
+  endif()
+endforeach()
+
+if(failures GREATER 0)
+  message(FATAL_ERROR "the exercise configuration: ${failures} failures")
+endif()
+message("the exercise configuration: solutions, planted mistakes and stubs as expected")
