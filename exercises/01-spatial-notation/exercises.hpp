@@ -10,15 +10,17 @@
 /// h(), J(), ...), soa::tilde() for 3-vectors and Eigen, but not the library function that
 /// the exercise asks you to reproduce (named in each statement): the test compares with it.
 ///
-/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular first, \f$V = [\omega; v]\f$,
-/// \f$f = [N; F]\f$; \f${}^x R_y\f$ maps y-coordinates to x-coordinates; a soa::Phi
-/// \f$\phi(x,y)\f$ holds \f$R = {}^x R_y\f$ and \f$l = {}^x l(x,y)\f$ (slide 43).
+/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular
+/// first, \f$V = [\omega; v]\f$, \f$f = [N; F]\f$; \f${}^x R_y\f$ maps y-coordinates to
+/// x-coordinates; a soa::Phi \f$\phi(x,y)\f$ holds \f$R = {}^x R_y\f$ and \f$l = {}^x l(x,y)\f$
+/// (slide 43).
 ///
 /// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
 /// 3: work it out: derive the formula, predict then check, or find the bug in given code),
 /// the time it usually takes, and the exercises it builds on ("uses 1.2": the same idea, done
 /// there first; never a call to your code of that exercise). Stuck on one?
-/// `make exercises HINT=1.8` prints its hints one at a time (exercises/01-spatial-notation/hints.md).
+/// `make exercises HINT=1.8` prints its hints one at a time
+/// (exercises/01-spatial-notation/hints.md).
 #pragma once
 
 #include "soa/soa.hpp"
@@ -138,6 +140,9 @@ Pose exp_twist(const Velocity& xi);
 
 /// **Exercise 1.8: The cross product of forces, worked out from power (slides 53-55).**
 /// *Level 3 of 3, about 30 min; uses 1.2.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=1.8`).*
 ///
 /// The spatial cross product \f$\tilde X\f$ of exercise 1.2 acts on motion vectors. Forces
 /// get their own operator, \f$\bar X\f$, defined by the power it pairs with (lesson 1, section
@@ -160,6 +165,9 @@ Force force_cross(const Velocity& X, const Force& f);
 
 /// **Exercise 1.9: Predict the rank of a spatial cross product (slides 53-54).**
 /// *Level 3 of 3, about 25 min; uses 1.2.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=1.9`).*
 ///
 /// For the motion vector \p X \f$= [x; y]\f$ the 6x6 matrix
 /// \f$\tilde X = \begin{pmatrix} \tilde x & 0 \\ \tilde y & \tilde x \end{pmatrix}\f$

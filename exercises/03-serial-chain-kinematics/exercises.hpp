@@ -3,13 +3,14 @@
 /// the scatter recursion of the velocities, the operators \f$\mathcal E_\phi\f$ and
 /// \f$\phi\f$, Jacobians, and the Coriolis term \f$a(k)\f$.
 ///
-/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular part first, \f$V = [\omega; v]\f$,
-/// \f$f = [N; F]\f$. Bodies are numbered from the tip: body 1 is the tip, body n is next to
-/// the base, and hinge k joins body k+1 (inboard) to body k. Lists of per-body quantities are
-/// indexed tip first: entry `k - 1` belongs to body k. \f$\phi(k+1,k)\f$ is stored as a
-/// soa::Phi (rotation \f$R = {}^{k+1}R_k\f$ and offset \f$l = {}^{k+1}l(O_{k+1}, O_k)\f$):
-/// `phi.R()`, `phi.l()`, `phi.matrix()` (the 6x6), `phi.transpose_apply(V)` (\f$\phi^* V\f$),
-/// `phi.apply(f)` (\f$\phi f\f$). Every \f$V(k)\f$ is in the coordinates of \f$O_k\f$.
+/// Conventions (the notes' page "Conventions", docs/conventions.md): spatial vectors angular part
+/// first, \f$V = [\omega; v]\f$, \f$f = [N; F]\f$. Bodies are numbered from the tip: body 1 is the
+/// tip, body n is next to the base, and hinge k joins body k+1 (inboard) to body k. Lists of
+/// per-body quantities are indexed tip first: entry `k - 1` belongs to body k. \f$\phi(k+1,k)\f$
+/// is stored as a soa::Phi (rotation \f$R = {}^{k+1}R_k\f$ and offset
+/// \f$l = {}^{k+1}l(O_{k+1}, O_k)\f$): `phi.R()`, `phi.l()`, `phi.matrix()` (the 6x6),
+/// `phi.transpose_apply(V)` (\f$\phi^* V\f$), `phi.apply(f)` (\f$\phi f\f$). Every \f$V(k)\f$ is
+/// in the coordinates of \f$O_k\f$.
 ///
 /// Under each title: the exercise's level (1 of 3: apply a formula; 2: put several together;
 /// 3: work it out: derive the formula, predict then check, or find the bug in given code),
@@ -37,8 +38,8 @@ using Matrix6X = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 /// Return the 6 x \f$n_k\f$ joint map of \p hinge at its coordinates \p theta
 /// (\f$\theta(k)\f$, `hinge.nq()` entries), so that the velocity of \f$O_k\f$ relative to
 /// \f$O_k^+\f$, in \f$O_k\f$ coordinates, is \f$\Delta_V = H^*(k)\,\beta(k)\f$ (lesson 3,
-/// section 2). With the unit axis \f$a\f$ = `hinge.axis`, the second axis \f$a_2\f$ =
-/// `hinge.axis2` and the pitch \f$h\f$ = `hinge.pitch`:
+/// section 2, "Hinges and their joint maps"). With the unit axis \f$a\f$ = `hinge.axis`, the
+/// second axis \f$a_2\f$ = `hinge.axis2` and the pitch \f$h\f$ = `hinge.pitch`:
 /// - revolute: \f$[a;\ 0]\f$; prismatic: \f$[0;\ a]\f$; helical: \f$[a;\ h\, a]\f$ (one
 ///   turn about \f$a\f$ advances \f$2\pi h\f$ along it);
 /// - universal (turns \f$\theta_1\f$ about \f$a\f$, then \f$\theta_2\f$ about \f$a_2\f$):
@@ -53,7 +54,8 @@ Matrix6X joint_map(const Hinge& hinge, const VecX<double>& theta);
 /// *Level 1 of 3, about 15 min.*
 /// A chain of n = `phi.size()` bodies: `phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative
 /// to the inertial frame) and `dV[k-1]` is the hinge velocity \f$H^*(k)\beta(k)\f$ of body k.
-/// Return the body velocities \f$V(k)\f$ (entry `k - 1`), base to tip (lesson 3, section 6):
+/// Return the body velocities \f$V(k)\f$ (entry `k - 1`), base to tip (lesson 3, section 6,
+/// "Velocities: the scatter recursion"):
 /// \f[ V(k) = \phi^*(k+1,k)\, V(k+1) + H^*(k)\beta(k), \qquad k = n, \dots, 1, \qquad
 ///     V(n+1) = 0 . \f]
 /// Reproduces the velocity part of soa::update_velocities (do not call it).
@@ -64,9 +66,9 @@ std::vector<Velocity> scatter_velocities(const std::vector<Phi>& phi,
 /// *Level 1 of 3, about 10 min.*
 /// For the same `phi` as in 3.2, return the 6n x 6n matrix \f$\mathcal E_\phi\f$ whose only
 /// non-zero blocks are \f$\phi(k+1,k)\f$ (the 6x6 `phi[k-1].matrix()`) at block row k+1,
-/// block column k, for k = 1 ... n-1 (lesson 3, section 9). Block k is rows and columns
-/// \f$6(k-1) \dots 6k-1\f$. (\f$\phi(n+1,n)\f$ does not appear: body n+1 is not in the
-/// chain.) Reproduces soa::Operators::E_phi.
+/// block column k, for k = 1 ... n-1 (lesson 3, section 9, "The first spatial operators"). Block k
+/// is rows and columns \f$6(k-1) \dots 6k-1\f$. (\f$\phi(n+1,n)\f$ does not appear: body n+1 is
+/// not in the chain.) Reproduces soa::Operators::E_phi.
 MatX<double> shift_operator(const std::vector<Phi>& phi);
 
 /// **Exercise 3.4: the operator \f$\phi\f$, block by block.**
@@ -75,17 +77,17 @@ MatX<double> shift_operator(const std::vector<Phi>& phi);
 /// lower triangular with the blocks
 /// \f[ \phi(i,j) = \phi(i,i-1)\,\phi(i-1,i-2) \cdots \phi(j+1,j) \ (i > j), \qquad
 ///     \phi(i,i) = I, \qquad 0 \ (i < j) \f]
-/// at block row i, column j (lesson 3, section 9). Compute each column of blocks with one
-/// product per block: \f$\phi(i+1,j) = \phi(i+1,i)\,\phi(i,j)\f$. Reproduces
-/// soa::Operators::phi.
+/// at block row i, column j (lesson 3, section 9, "The first spatial operators"). Compute each
+/// column of blocks with one product per block: \f$\phi(i+1,j) = \phi(i+1,i)\,\phi(i,j)\f$.
+/// Reproduces soa::Operators::phi.
 MatX<double> phi_operator(const std::vector<Phi>& phi);
 
 /// **Exercise 3.5: the Jacobian of a frame.**
 /// *Level 2 of 3, about 40 min; uses 3.4.*
 /// A frame F is fixed on body \p k of the chain \p m at the pose \p frame \f$= {}^{O_k}T_F\f$.
 /// Return its Jacobian J (6 x `m.nv()`), \f$V(F) = J\beta\f$ with \f$V(F)\f$ in F
-/// coordinates: \f$J = B^*\phi^*H^*\f$ (lesson 3, section 10), whose column block of hinge i
-/// is
+/// coordinates: \f$J = B^*\phi^*H^*\f$ (lesson 3, section 10, "Jacobians"), whose column block of
+/// hinge i is
 /// \f[ \phi^*(O_i, F)\, H^*(i) \quad (i \ge k), \qquad 0 \quad (i < k), \f]
 /// with \f$\phi(O_i, F)\f$ from the poses: \f${}^{O_i}T_F = ({}^I T_{O_i})^{-1}\, {}^I T_{O_k}\,
 /// {}^{O_k}T_F\f$. Get the poses with soa::update_phi and soa::update_poses (a soa::Workspace
@@ -102,7 +104,8 @@ Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const 
 /// and \p Hdot_beta \f$= \mathring H^*(k)\beta(k)\f$ (both in \f$O_k\f$ coordinates), and
 /// \p phi is \f$\phi(k+1,k)\f$. Return the Coriolis term of the acceleration recursion
 /// \f$\alpha(k) = \phi^*(k+1,k)\alpha(k+1) + H^*(k)\dot\beta(k) + a(k)\f$, in \f$O_k\f$
-/// coordinates, from its coordinate-free form (lesson 3, section 7):
+/// coordinates, from its coordinate-free form (lesson 3, section 7, "Accelerations and the
+/// Coriolis term"):
 /// \f[ a(k) = \begin{pmatrix} \omega(k+1) \times \Delta_\omega
 ///     \\ \omega(k) \times \Delta_v + \omega(k+1) \times \big(v(k) - v(k+1)\big) \end{pmatrix}
 ///     + \mathring H^*(k)\beta(k), \f]
@@ -122,6 +125,9 @@ struct PlanarJointMap {
 
 /// **Exercise 3.7: derive the joint map of a planar hinge.**
 /// *Level 3 of 3, about 45 min; uses 3.1.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 4 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=3.7`).*
 /// A planar hinge lets body k turn about a unit axis \f$a\f$ and slide in the plane
 /// perpendicular to it (a puck on a table, a mobile robot on the floor). Its coordinates
 /// \f$\theta = (\theta_1, \theta_2, \theta_3)\f$ are an angle and two offsets: with the unit
@@ -131,7 +137,8 @@ struct PlanarJointMap {
 /// with \f$a\f$, \f$b\f$, \f$c\f$ and \f$l\f$ in \f$O_k^+\f$ coordinates (the axis of
 /// \f$R\f$ has the same coordinates \f$a\f$ in \f$O_k\f$), and \f$\beta = \dot\theta\f$
 /// (\p theta, \p beta: three entries each). The library has no such hinge: derive and return
-/// (lesson 3, sections 2 and 7)
+/// (lesson 3, sections 2, "Hinges and their joint maps", and 7, "Accelerations and the Coriolis
+/// term")
 /// - `H_star`: the 6 x 3 joint map \f$H^*(\theta)\f$, with \f$\Delta_V = H^*(\theta)\,\beta\f$
 ///   the spatial velocity of \f$O_k\f$ relative to \f$O_k^+\f$ **in \f$O_k\f$ coordinates**,
 ///   angular part first (the definition of lesson 1: \f$\tilde\omega = R^*\dot R\f$,
@@ -148,10 +155,14 @@ PlanarJointMap planar_joint_map(const Vec3<double>& a, const Vec3<double>& b,
 
 /// **Exercise 3.8: find the bug: the velocity of a point of the chain.**
 /// *Level 3 of 3, about 30 min; uses 3.2.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=3.8`).*
 /// A point P is fixed on body \p k of the chain \p m at \p p \f$= {}^{O_k}l(O_k, P)\f$, in
 /// \f$O_k\f$ coordinates (a tool tip, a marker). Return its velocity in inertial coordinates,
-/// \f${}^I v(P) = \tfrac{d}{dt}\,{}^I l(I, P)\f$, at the state \p x (lesson 3, sections 5
-/// and 6; lesson 1, moving a spatial velocity to another point).
+/// \f${}^I v(P) = \tfrac{d}{dt}\,{}^I l(I, P)\f$, at the state \p x (lesson 3, sections 5, "Poses:
+/// the first scatter recursion", and 6, "Velocities: the scatter recursion"; lesson 1, moving a
+/// spatial velocity to another point).
 ///
 /// The stub in exercises.cpp already holds code for it, after the `throw` line: it compiles,
 /// it runs, and it has **one** bug. Delete the `throw` line, run the test (its report says

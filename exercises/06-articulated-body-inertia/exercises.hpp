@@ -46,7 +46,7 @@ struct RiccatiStep {
 /// *Level 1 of 3, about 20 min.*
 /// Given \f$P^+(k-1)\f$ (\p P_plus_prev; zero for the tip, k = 1), \f$\phi(k,k-1)\f$
 /// (\p phi), \f$M(k)\f$ (\p M) and \f$H^*(k)\f$ (\p H_star, 6 x n_k), return (lesson 6,
-/// section 2)
+/// section 2, "The Riccati recursion")
 /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \quad D(k) = H(k)P(k)H^*(k), \f]
 /// \f[ G(k) = P(k)H^*(k)D^{-1}(k), \quad P^+(k) = P(k) - G(k)D(k)G^*(k). \f]
 /// \f$\phi P^+ \phi^*\f$ may use `phi.matrix()` or soa::transform_symmetric (exercise 6.4
@@ -57,7 +57,7 @@ RiccatiStep riccati_step(const Mat6& P_plus_prev, const Phi& phi, const SpatialI
 /// **Exercise 6.2: the projection \f$\bar\tau\f$.**
 /// *Level 1 of 3, about 10 min.*
 /// For an articulated inertia \p P (symmetric, with \f$H P H^*\f$ positive definite) and a
-/// hinge map \p H_star (6 x n_k), return (lesson 6, section 3)
+/// hinge map \p H_star (6 x n_k), return (lesson 6, section 3, "Properties")
 /// \f[ \bar\tau = I - G H, \qquad G = P H^* (H P H^*)^{-1} . \f]
 /// It is a projection, \f$\bar\tau^2 = \bar\tau\f$, with \f$H\bar\tau P = 0\f$: the tests
 /// check both. Do not call soa::ArticulatedT::tau_bar.
@@ -78,7 +78,7 @@ VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 /// For a symmetric 6x6 \p P with blocks \f$\begin{pmatrix} A & B \\ B^* & C\end{pmatrix}\f$
 /// return \f$\phi\, P\, \phi^*\f$ from \f$R\f$ = `phi.R()` and \f$L = \tilde\ell\f$
 /// (\f$\ell\f$ = `phi.l()`): rotate the blocks, \f$A' = RAR^*\f$, \f$B' = RBR^*\f$,
-/// \f$C' = RCR^*\f$, then shift (lesson 6, section 2)
+/// \f$C' = RCR^*\f$, then shift (lesson 6, section 2, "The Riccati recursion")
 /// \f[ \phi P \phi^* = \begin{pmatrix} A' + LB'^* - B'L - LC'L & B' + LC' \\ (B' + LC')^*
 ///     & C' \end{pmatrix} . \f]
 /// Do not call soa::Phi::matrix() (`phi.matrix()`) or soa::transform_symmetric.
@@ -88,7 +88,8 @@ Mat6 transform_symmetric(const Phi& phi, const Mat6& P);
 /// *Level 1 of 3, about 15 min.*
 /// For the chain \p m (gravity as \p m says) at the state \p x with hinge forces \p T and no
 /// external forces, run soa::forward_dynamics (allowed) and return, at entry k−1 (size n),
-/// the force across hinge k from the inter-body forces identity (lesson 6, sections 2 and 8)
+/// the force across hinge k from the inter-body forces identity (lesson 6, sections 2, "The Riccati
+/// recursion", and 8, "Alternative force decompositions")
 /// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \f]
 /// with \f$P^+(k)\f$, \f$\alpha^+(k)\f$, \f$z^+(k)\f$ as the forward dynamics leaves them in
 /// soa::ForwardDynamics (`fd.art.P_plus`, `fd.alpha_plus`, `fd.z_plus`). The test compares
@@ -100,7 +101,7 @@ std::vector<Vec6<double>> articulated_forces(const Model& m, const State& x, con
 /// *Level 2 of 3, about 40 min; uses 4.1.*
 /// For the chain \p m (gravity as \p m says) at the state \p x with hinge accelerations
 /// \p beta_dot and no external forces, return \f$y(k)\f$ at entry k−1 (size n) such that
-/// \f$f(k) = R(k)\,\alpha^+(k) + y(k)\f$ (lesson 6, section 8):
+/// \f$f(k) = R(k)\,\alpha^+(k) + y(k)\f$ (lesson 6, section 8, "Alternative force decompositions"):
 /// \f[ y(k) = \phi(k,k-1)\,y(k-1) + R(k)\bigl(\alpha(k) - \alpha^+(k)\bigr) + b(k), \quad
 ///     y(0) = 0, \quad \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1),\ \alpha(n+1) = [0; -g], \f]
 /// with \f$b(k)\f$ the gyroscopic force (soa::gyroscopic_force of \f$M(k)\f$ and \f$V(k)\f$).
@@ -113,44 +114,54 @@ std::vector<Vec6<double>> composite_bias(const Model& m, const State& x,
 
 /// **Exercise 6.7: find the bug in a Riccati sweep.**
 /// *Level 3 of 3, about 30 min; uses 6.1.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=6.7`).*
 /// The stub of `riccati_sweep` in exercises.cpp holds, under its `throw` line, code that is
-/// meant to run the Riccati recursion of lesson 6 (section 2) tip to base over the chain
+/// meant to run the Riccati recursion of lesson 6 (section 2, "The Riccati recursion") tip to base
+/// over the chain
 /// \p m (any hinge types) at \p theta and return \f$P(k)\f$ at entry k−1 (size n). It
 /// compiles and runs, but it has one bug. Find it and fix it, then delete the `throw`. No
-/// reference result is needed to find it: the properties of lesson 6, section 3, checked on
-/// the quantities the code computes, point to the line. Do not call soa::articulated_inertias
-/// or soa::riccati_step.
+/// reference result is needed to find it: the properties of lesson 6, section 3, "Properties",
+/// checked on the quantities the code computes, point to the line. Do not call
+/// soa::articulated_inertias or soa::riccati_step.
 std::vector<Mat6> riccati_sweep(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 6.8: predict what \f$P^+(k)\f$ cannot feel.**
 /// *Level 3 of 3, about 30 min; uses 6.2.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=6.8`).*
 /// \f$P^+(k)\f$ is the inertia that the bodies 1..k, hinge k free as well, present to body
 /// k+1: the force across hinge k is \f$f(k) = P^+(k)\,\alpha^+(k) + z^+(k)\f$ (lesson 6,
-/// sections 2 and 3). It is singular: some accelerations \f$\alpha^+(k)\f$ of body k+1 cost
-/// no force at all. Predict which, from the hinges alone, before computing any inertia: for
-/// the chain \p m at \p theta (every body with a positive definite \f$M(k)\f$) return, at
-/// entry k−1 (size n), a 6 x \f$r_k\f$ matrix whose \f$r_k\f$ columns are a basis of the null
-/// space of \f$P^+(k)\f$ (the 6-vectors \f$x\f$ with \f$P^+(k)\,x = 0\f$; \f$r_k\f$ is for
-/// you to predict too). The answer does not depend on the masses: do not compute any
-/// inertia of the chain (soa::articulated_inertias, soa::riccati_step, soa::composite_inertias,
-/// soa::forward_dynamics, `m.body(k).M`). The test checks your columns against the
-/// library's \f$P^+(k)\f$: their number is 6 − rank \f$P^+(k)\f$, \f$P^+(k)\f$ maps each to
-/// zero, and they are independent.
+/// sections 2, "The Riccati recursion", and 3, "Properties"). It is singular: some
+/// accelerations \f$\alpha^+(k)\f$ of body k+1 cost no force at all. Predict which, from the hinges
+/// alone, before computing any inertia: for the chain \p m at \p theta (every body with a positive
+/// definite \f$M(k)\f$) return, at entry k−1 (size n), a 6 x \f$r_k\f$ matrix whose \f$r_k\f$
+/// columns are a basis of the null space of \f$P^+(k)\f$ (the 6-vectors \f$x\f$ with
+/// \f$P^+(k)\,x = 0\f$; \f$r_k\f$ is for you to predict too). The answer does not depend on the
+/// masses: do not compute any inertia of the chain (soa::articulated_inertias, soa::riccati_step,
+/// soa::composite_inertias, soa::forward_dynamics, `m.body(k).M`). The test checks your columns
+/// against the library's \f$P^+(k)\f$: their number is 6 − rank \f$P^+(k)\f$, \f$P^+(k)\f$ maps
+/// each to zero, and they are independent.
 std::vector<MatX<double>> P_plus_null_spaces(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 6.9: the shaken base.**
 /// *Level 3 of 3, about 45 min; uses 6.1.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 4 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=6.9`).*
 /// The chain \p m hangs at rest (\f$\beta = 0\f$) at \p theta: no gravity (ignore
 /// `m.gravity`, it is zero), no springs, no external forces, and no hinge forces
 /// (\f$T = 0\f$: every hinge is free). At one instant the base (body n+1, the inertial
 /// frame) is given the spatial acceleration \f$\alpha(n+1) = [0; a_0]\f$, \p a0 in inertial
 /// coordinates (it translates, it does not rotate). Return the hinge accelerations
 /// \f$\dot\beta\f$ of that instant (size nv, tip first), in O(n). Derive them from the
-/// articulated body relations of lesson 6, section 2: what are \f$z(k)\f$, \f$\epsilon(k)\f$
-/// and \f$\nu(k)\f$ here, and how does the acceleration reach body k from the base?
-/// \f$P(k)\f$, \f$D(k)\f$, \f$G(k)\f$ from soa::articulated_inertias (after soa::update_phi)
-/// are allowed. Do not call soa::forward_dynamics, soa::inverse_dynamics, soa::OperatorsT,
-/// soa::mass_matrix_crb or soa::mass_matrix_inverse.
+/// articulated body relations of lesson 6, section 2, "The Riccati recursion": what are
+/// \f$z(k)\f$, \f$\epsilon(k)\f$ and \f$\nu(k)\f$ here, and how does the acceleration reach body k
+/// from the base? \f$P(k)\f$, \f$D(k)\f$, \f$G(k)\f$ from soa::articulated_inertias (after
+/// soa::update_phi) are allowed. Do not call soa::forward_dynamics, soa::inverse_dynamics,
+/// soa::OperatorsT, soa::mass_matrix_crb or soa::mass_matrix_inverse.
 VecX<double> shaken_base(const Model& m, const VecX<double>& theta, const Vec3<double>& a0);
 
 }  // namespace soa::ex06

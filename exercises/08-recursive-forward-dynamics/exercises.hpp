@@ -2,12 +2,12 @@
 /// Lesson 8 exercises: the sweeps of the O(N) articulated body forward dynamics, the
 /// inter-body forces, and a simulation step.
 ///
-/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is next to the base; hinge k
-/// joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$, \f$T\f$ are stacked tip first (body
-/// k's entries start at `m.body(k).q_offset` and `m.body(k).v_offset`). Spatial vectors are
-/// angular part first; body k's quantities are at its hinge frame \f$O_k\f$, in \f$O_k\f$
-/// coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative to the inertial
-/// frame), so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.apply(f)` is \f$\phi f\f$,
+/// Conventions (the notes' page "Conventions", docs/conventions.md): body 1 is the tip, body n is
+/// next to the base; hinge k joins body k+1 to body k; \f$\theta\f$, \f$\beta\f$, \f$T\f$ are
+/// stacked tip first (body k's entries start at `m.body(k).q_offset` and `m.body(k).v_offset`).
+/// Spatial vectors are angular part first; body k's quantities are at its hinge frame \f$O_k\f$,
+/// in \f$O_k\f$ coordinates. `ws.phi[k-1]` is \f$\phi(k+1,k)\f$ (for k = n, relative to the
+/// inertial frame), so \f$\phi(k,k-1)\f$ is `ws.phi[k-2]`; `phi.apply(f)` is \f$\phi f\f$,
 /// `phi.transpose_apply(V)` is \f$\phi^* V\f$, `phi.matrix()` the 6x6 matrix. \f$H^*(k)\f$ is
 /// the 6 x n_k matrix `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)`,
 /// \f$H(k)\f$ its transpose.
@@ -46,7 +46,7 @@ struct TipToBase {
 /// *Level 2 of 3, about 40 min.*
 /// Every hinge of \p m is revolute (\f$H^*(k) = [a_k; 0]\f$, \f$a_k\f$ =
 /// `m.body(k).hinge.axis`); no gravity, no external forces, no springs. At the state \p x
-/// with hinge torques \p T, return for k = 1 (tip) ... n (lesson 8, section 2)
+/// with hinge torques \p T, return for k = 1 (tip) ... n (lesson 8, section 2, "The Riccati sweep")
 /// \f[ z(k) = \phi(k,k-1)\,z^+(k-1) + P(k)\,a(k) + b(k), \quad \epsilon(k) = T(k) - H(k)z(k),
 ///     \quad \nu(k) = \epsilon(k)/D(k), \quad z^+(k) = z(k) + G(k)\,\epsilon(k), \f]
 /// with \f$z^+(0) = 0\f$ and \f$b(k)\f$ the gyroscopic term of lesson 2. \f$P, D, G\f$ from
@@ -60,7 +60,7 @@ TipToBase tip_to_base(const Model& m, const State& x, const VecX<double>& T);
 /// the gains \f$G(k)\f$ = `art.G[k-1]` (6 x n_k), \f$\nu(k)\f$ = `nu[k-1]` (n_k entries)
 /// and the base acceleration \f$\alpha(n+1)\f$ = \p alpha_base (\f$[0; -g]\f$ for gravity,
 /// in inertial coordinates), return \f$\dot\beta\f$ (size nv, tip first) and fill \p alpha
-/// (size n) with \f$\alpha(k)\f$, for k = n ... 1 (lesson 8, section 2):
+/// (size n) with \f$\alpha(k)\f$, for k = n ... 1 (lesson 8, section 2, "The Riccati sweep"):
 /// \f[ \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1), \quad \dot\beta(k) = \nu(k) -
 ///     G^*(k)\,\alpha^+(k), \quad \alpha(k) = \alpha^+(k) + H^*(k)\dot\beta(k) + a(k). \f]
 /// Do not call soa::forward_dynamics.
@@ -87,7 +87,7 @@ VecX<double> forward_dynamics_1dof(const Model& m, const State& x, const VecX<do
 /// \p fd holds the results of soa::forward_dynamics at some state \p x: \f$P^+(k)\f$ =
 /// `fd.art.P_plus[k-1]`, \f$\alpha^+(k)\f$ = `fd.alpha_plus[k-1]`, \f$z^+(k)\f$ =
 /// `fd.z_plus[k-1]`. Return the spatial force \f$f(k)\f$ that body k+1 exerts on body k
-/// through hinge k (lesson 8, sections 2-3),
+/// through hinge k (lesson 8, sections 2, "The Riccati sweep", and 3, "The inter-body forces"),
 /// \f[ f(k) = P^+(k)\,\alpha^+(k) + z^+(k), \f]
 /// and fill \p T_hinge (size nv) with \f$H(k)f(k)\f$, the part of it along the hinge's free
 /// directions (it equals \f$T + \tau_s\f$, the hinge forces with the springs' force).
@@ -100,7 +100,8 @@ std::vector<Force> inter_body_forces(const Model& m, const State& x, const Forwa
 /// Every hinge of \p m has \f$\dot\theta = \beta\f$ (revolute, prismatic, helical,
 /// universal). Return the state after one step \p h of the classical Runge–Kutta method
 /// (RK4) for \f$\dot\theta = \beta\f$, \f$\dot\beta = \mathrm{FD}(\theta, \beta, T)\f$ with
-/// the hinge forces \p T held constant and no external forces (lesson 8, section 7):
+/// the hinge forces \p T held constant and no external forces (lesson 8, section 7, "A short
+/// simulation"):
 /// \f[ k_1 = F(y), \; k_2 = F(y + \tfrac h2 k_1), \; k_3 = F(y + \tfrac h2 k_2), \;
 ///     k_4 = F(y + h k_3), \quad y' = y + \tfrac h6 (k_1 + 2k_2 + 2k_3 + k_4), \f]
 /// \f$y = (\theta, \beta)\f$, \f$F(y) = (\beta, \mathrm{FD}(\theta, \beta, T))\f$.
@@ -109,10 +110,13 @@ State rk4_step(const Model& m, const State& x, const VecX<double>& T, double h);
 
 /// **Exercise 8.6: find the bug in an articulated body forward dynamics.**
 /// *Level 3 of 3, about 30 min; uses 8.1 and 8.2.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 3 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=8.6`).*
 /// The stub of this function in exercises.cpp holds, below its `throw` line, a complete
-/// forward dynamics by the three sweeps of lesson 8, section 2, for hinges of any type, with
-/// gravity (`m.gravity`), the external forces \p f_ext (empty: none; else entry k−1 acts on
-/// body k at \f$O_k\f$) and the hinges' springs and dampers, with \f$P, D, G\f$ from
+/// forward dynamics by the three sweeps of lesson 8, section 2, "The Riccati sweep", for hinges of
+/// any type, with gravity (`m.gravity`), the external forces \p f_ext (empty: none; else entry k−1
+/// acts on body k at \f$O_k\f$) and the hinges' springs and dampers, with \f$P, D, G\f$ from
 /// soa::articulated_inertias. It compiles and runs, and it has **one bug**: on many chains
 /// its \f$\dot\beta\f$ is wrong. Delete the `throw` line, run `make exercises EX=8.6` and read
 /// the symptom (which cases fail, which pass), find the bug with the formulas of the lesson
@@ -129,6 +133,9 @@ struct Hybrid {
 
 /// **Exercise 8.7: hybrid dynamics, some hinges driven by their accelerations.**
 /// *Level 3 of 3, about 60 min; uses 8.3.*
+/// *Feedback: the first messages say where your result goes wrong, not what the mistake
+/// is; the checker names a mistake it knows after 5 failed runs of `make exercises`, or
+/// once you have read all the hints (`make exercises HINT=8.7`).*
 /// Servos hold some hinges of the chain \p m on a prescribed motion. For body k with
 /// `prescribed[k-1]` true, the accelerations \f$\dot\beta(k)\f$ of hinge k are given (the
 /// entries of \p beta_dot from `m.body(k).v_offset` on) and its hinge force \f$T(k)\f$ is
@@ -139,13 +146,13 @@ struct Hybrid {
 /// \f$\dot\beta\f$ and \f$T\f$ with \f$T = \mathcal M\dot\beta + \mathcal C\f$ for the
 /// whole chain, the given entries copied through.
 ///
-/// Derive it from lesson 8, section 2 (with lesson 6's derivation of the Riccati sweep): by
-/// induction from the tip, the force across hinge k is \f$f(k) = P(k)\,(\alpha(k) - a(k)) +
-/// z(k) = P^+(k)\,\alpha^+(k) + z^+(k)\f$. Work out what \f$P^+(k)\f$ and \f$z^+(k)\f$ are
-/// across a prescribed hinge, where \f$\dot\beta(k)\f$ is known, and how the base-to-tip
-/// sweep gets its \f$T(k)\f$; free hinges keep the sweeps of section 2. After the velocities,
-/// one sweep tip to base and one base to tip, O(N): no mass matrix. soa::update_phi,
-/// soa::update_velocities (\f$V\f$, \f$a\f$), soa::gyroscopic_force,
+/// Derive it from lesson 8, section 2, "The Riccati sweep" (with lesson 6's derivation of the
+/// Riccati sweep): by induction from the tip, the force across hinge k is
+/// \f$f(k) = P(k)\,(\alpha(k) - a(k)) + z(k) = P^+(k)\,\alpha^+(k) + z^+(k)\f$. Work out what
+/// \f$P^+(k)\f$ and \f$z^+(k)\f$ are across a prescribed hinge, where \f$\dot\beta(k)\f$ is known,
+/// and how the base-to-tip sweep gets its \f$T(k)\f$; free hinges keep the sweeps of section 2,
+/// "The Riccati sweep". After the velocities, one sweep tip to base and one base to tip, O(N): no
+/// mass matrix. soa::update_phi, soa::update_velocities (\f$V\f$, \f$a\f$), soa::gyroscopic_force,
 /// soa::gravity_base_acceleration, `phi.matrix()` and `hinge.H_star(...)` are yours to use; do
 /// not call soa::forward_dynamics, soa::articulated_inertias, soa::riccati_step,
 /// soa::inverse_dynamics, soa::mass_matrix_crb or soa::OperatorsT.

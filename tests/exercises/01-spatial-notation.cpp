@@ -415,6 +415,11 @@ std::string quaternion_code(const Vec3d& axis, double theta) {
          ";\nsoa::UnitQuaternion q = soa::ex01::quaternion_from_axis_angle(n, theta);\n";
 }
 
+// The first cases of 1.4: small, readable numbers (the simplest failing case is shown in
+// full), axes not of unit length.
+const Vec3d kSimpleAxis[] = {Vec3d(0, 0, 2), Vec3d(1, 0, 0), Vec3d(1, 2, 2), Vec3d(0, 3, 4)};
+const double kSimpleTheta[] = {1.0, 0.5, -2.0, 3.0};
+
 Naming quaternion_naming() {
   return [](Eigen::Index i, Eigen::Index) {
     return i < 3 ? soa::test::EntryName{"q[" + std::to_string(i) + "]",
@@ -427,8 +432,8 @@ TEST(Exercise1_4_QuaternionFromAxisAngle, MatchesLibraryExp) {
   Random rnd;
   Check check("the quaternion's coefficients [q; q0]", 16 * kEps);
   for (int i = 0; i < kCases; ++i) {
-    const Vec3d axis = rnd.vec3();  // not of unit length
-    const double theta = rnd.uniform(-2 * kPi, 2 * kPi);
+    const Vec3d axis = i < 4 ? kSimpleAxis[i] : rnd.vec3();  // not of unit length
+    const double theta = i < 4 ? kSimpleTheta[i] : rnd.uniform(-2 * kPi, 2 * kPi);
     const soa::UnitQuaternion q = soa::ex01::quaternion_from_axis_angle(axis, theta);
     const Eigen::Vector4d ref = soa::UnitQuaternion::exp(theta * axis.normalized()).coeffs();
     check.add(
@@ -441,8 +446,8 @@ TEST(Exercise1_4_QuaternionFromAxisAngle, MatrixIsTheRodriguesFormula) {
   Random rnd(41);
   Check check("the quaternion's rotation matrix against exp_so3 (Rodrigues)", 32 * kEps);
   for (int i = 0; i < kCases; ++i) {
-    const Vec3d axis = rnd.vec3();
-    const double theta = rnd.uniform(-2 * kPi, 2 * kPi);
+    const Vec3d axis = i < 4 ? kSimpleAxis[i] : rnd.vec3();
+    const double theta = i < 4 ? kSimpleTheta[i] : rnd.uniform(-2 * kPi, 2 * kPi);
     const Mat3d R = soa::ex01::quaternion_from_axis_angle(axis, theta).matrix();
     const Mat3d ref = soa::exp_so3<double>(theta * axis.normalized());
     check.add(
@@ -498,6 +503,10 @@ Mistakes kinetic_energy_mistakes(const soa::SpatialInertia& M, const soa::Veloci
       {"wrong point",
        "your rotational term uses J(C): M_x.J() is already J(x), the inertia about x",
        one(0.5 * w.dot(M.J_cm() * w) + coupling + lin)},
+      {soa::test::kMeasured, "the expected value with 1/2 w* J w taken without its 1/2",
+       one(2 * rot + coupling + lin)},
+      {soa::test::kMeasured, "the expected value with 1/2 m v* v taken without its 1/2",
+       one(rot + coupling + 2 * lin)},
   };
 }
 

@@ -49,12 +49,16 @@ soa_plant(3.6 relative-sign
 soa_plant(3.6 angular-doubled
   FIND [=[w_p.cross(dw)]=]
   WRONG [=[2.0 * w_p.cross(dw)]=] TYPE [=[Vec3<double>]=]
-  EXPECT [=[symptom: every case unless there is more than one body passes]=])
+  EXPECT [=[symptom: it fails only where there is more than one body: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
 soa_plant(3.7 degrees
   FIND [=[theta[0] * a]=]
   WRONG [=[theta[0] * 3.14159265358979323846 / 180 * a]=] TYPE [=[Vec3<double>]=]
-  EXPECT [=[likely mistake \(degrees\): your rotation takes theta_1 in degrees]=])
+  EXPECT [=[H\*\(theta\), the joint map of the planar hinge: wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where the frames are rotated.*the checker knows this mistake: it names it after 4 failed runs.*where, in case [0-9]+ \(the simplest that fails\): column [23]]=]
+  REJECT [=[likely mistake|perhaps \(|your rotation takes theta_1 in degrees|R\* ?b|R\* ?c|a~ R\*|pi/180]=]
+  NAMED [=[likely mistake \(degrees\): your rotation takes theta_1 in degrees]=])
 soa_plant(3.8 the-bug
   FIND [=[w.cross(R * p)]=]
   WRONG [=[w.cross(p)]=] TYPE [=[Vec3<double>]=]
-  EXPECT [=[likely mistake \(the given bug\): your result is the given code's]=])
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your result is the given code's]=]
+  NAMED [=[likely mistake \(the given bug\): your result is the given code's]=])

@@ -77,7 +77,7 @@ MatX H_star(const soa::Model& m, const VecX& theta, int k) {
 }
 
 // The tags of the case of one Riccati step at body k of the chain case c: the chain's hinge
-// types (a mistake confined to one type of hinge shows as "every case unless a hinge is ..."
+// types (a mistake confined to one type of hinge shows as "it fails only where a hinge is ..."
 // without the other types' passing steps crowding the symptoms), and several bodies when the
 // step has a body outboard (k > 1: P+(k-1) and phi(k,k-1) are not zero and identity).
 unsigned step_tags(const ChainCase& c, int k) {

@@ -758,19 +758,23 @@ TEST(Exercise7_7_MinvFromUpsilon, MatchesLibraryAndDenseInverse) {
 
 // --- 7.8 ------------------------------------------------------------------------------------------
 
-// The operational-space inverse inertia with a classic mistake.
-enum class OpV { Transposed, Unmoved, InverseFrame, OneEarly, NoTau };
+// The operational-space inverse inertia with a classic mistake, or (DNotInverse) the
+// Upsilon recursion of lesson 7, section 8 with D(j) where D^-1(j) belongs.
+enum class OpV { Transposed, Unmoved, InverseFrame, OneEarly, NoTau, DNotInverse };
 Mat6 opspace_variant(const Parts& p, int k, const soa::Pose& frame, OpV v) {
   const auto j = std::size_t(k - 1);
   Mat6 U = p.Ups[j];
   if (v == OpV::OneEarly)
     U = k < p.n ? Mat6(p.phi[j].transpose() * p.Ups[j + 1] * p.phi[j]) : Mat6::Zero();
-  if (v == OpV::NoTau) {
+  if (v == OpV::NoTau || v == OpV::DNotInverse) {
+    // Upsilon(l) = psi*(l+1,l) Upsilon(l+1) psi(l+1,l) + H*(l) D^-1(l) H(l), l = n ... k.
     U.setZero();
     for (int l = p.n; l >= k; --l) {
       const auto jl = std::size_t(l - 1);
-      U = (l < p.n ? Mat6(p.phi[jl].transpose() * U * p.phi[jl]) : Mat6::Zero()) +
-          p.Hs[jl] * p.Dinv[jl] * p.Hs[jl].transpose();
+      const Mat6 step = v == OpV::NoTau ? p.phi[jl] : p.psi_step(l);
+      const MatX& D = v == OpV::NoTau ? p.Dinv[jl] : p.D[jl];
+      U = (l < p.n ? Mat6(step.transpose() * U * step) : Mat6::Zero()) +
+          p.Hs[jl] * D * p.Hs[jl].transpose();
     }
   }
   const Mat6 X = soa::Phi(v == OpV::InverseFrame ? frame.inverse() : frame).matrix();
@@ -822,6 +826,9 @@ TEST(Exercise7_8_OperationalInverseInertia, MatchesDenseJMinvJStar) {
            "your Upsilon recursion uses phi(j+1,j) where psi(j+1,j) = phi(j+1,j) tau_bar(j) "
            "belongs",
            v(OpV::NoTau)},
+          {soa::test::kMeasured,
+           "the expected value with D(j) in place of D^-1(j) in the Upsilon recursion",
+           v(OpV::DNotInverse)},
       };
     };
     check.add(

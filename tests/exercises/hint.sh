@@ -5,7 +5,9 @@
 #   Taught in: lesson 4, section 11 (the lesson's page and lessons/04-*/lesson.cpp)
 #   1. first hint (may run over several lines)
 #   2. ...
-# How many a student has seen is kept in <state dir>/<exercise>.
+# How many a student has seen is kept in <state dir>/<exercise>; once it is all of them, the
+# checker names the mistake of a level 3 exercise (tests/support/exercise_check.hpp).
+# make exercises passes build/exercises/hints, beside the cases folder the checker is given.
 #   hint.sh <exercise> <state dir>
 set -eu
 ex=$1
@@ -36,6 +38,8 @@ printf '%s\n' "$section" | awk -v upto="$next" '
 echo
 if [ "$seen" -ge "$total" ]; then
   echo "(all $total hints of $ex shown; the worked solution is in solutions/$(basename "$(dirname "$file")")/solutions.cpp)"
+elif [ "$next" -eq "$total" ]; then
+  echo "(hint $next of $total, the last: from now on make exercises names the mistake in $ex when it is one it knows)"
 else
   echo "(hint $next of $total; make exercises HINT=$ex again for the next)"
 fi

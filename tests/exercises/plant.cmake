@@ -10,9 +10,17 @@
 # (tests/support/planted.hpp) — the copy exNN-solutions links, off unless SOA_PLANT says —
 # and ctest runs the lesson's exercise tests on it once per mistake: `exercises.NN.planted.<id>` passes when the report of <exercise> matches
 # <regex> (the mistake named, e.g. "likely mistake \(transpose\)").
+#
+# Options, after EXPECT:
+#   REJECT <regex>  the test fails when the report matches it (FAIL_REGULAR_EXPRESSION): a
+#                   level 3 exercise's first message must not give the catalogue's formula;
+#   NAMED <regex>   a second test, `exercises.NN.planted.<id>.named`, runs the same mistake as
+#                   a student who has failed the exercise many times (a failed-run count of 99
+#                   in its SOA_EXERCISE_CASES): its report must match <regex>, the mistake
+#                   named (tests/support/exercise_check.hpp, progress()).
 
 function(soa_plant exercise id)
-  cmake_parse_arguments(P "" "FIND;WRONG;TYPE;EXPECT" "" ${ARGN})
+  cmake_parse_arguments(P "" "FIND;WRONG;TYPE;EXPECT;REJECT;NAMED" "" ${ARGN})
   foreach(key FIND WRONG EXPECT)
     if(NOT DEFINED P_${key})
       message(FATAL_ERROR "${_soa_plant_list}: soa_plant(${exercise} ${id}) has no ${key}")
@@ -33,6 +41,26 @@ function(soa_plant exercise id)
   list(APPEND _soa_plants "${full}")
   set(_soa_plants "${_soa_plants}" PARENT_SCOPE)
   set(_soa_expect_${full} "${P_EXPECT}" PARENT_SCOPE)
+  set(_soa_reject_${full} "${P_REJECT}" PARENT_SCOPE)
+  set(_soa_named_${full} "${P_NAMED}" PARENT_SCOPE)
+endfunction()
+
+# soa_feedback_test(<exercise> <id>): the way to the named mistake of a level 3 exercise, with
+# the planted mistake <id> on (tests/exercises/feedback_check.sh): its first runs do not name
+# it, the run after the number of failed runs its statement gives does, and so does a first
+# run after the whole hint ladder (make exercises HINT=<exercise>). <regex> is the named
+# message, as in NAMED. Called from a lesson's plant list, after the soa_plant() of <id>.
+function(soa_feedback_test exercise id regex)
+  string(REGEX MATCH "^([0-9]+)\\.([0-9]+)$" _ "${exercise}")
+  set(nn_ex ${CMAKE_MATCH_1})
+  set(k_ex ${CMAKE_MATCH_2})
+  set(name exercises.${nn}.feedback.${exercise}.${id})
+  add_test(NAME ${name}
+           COMMAND sh ${PROJECT_SOURCE_DIR}/tests/exercises/feedback_check.sh
+                   $<TARGET_FILE:ex${nn}-solutions> ${PROJECT_SOURCE_DIR}
+                   ${CMAKE_CURRENT_BINARY_DIR}/planted/feedback/${exercise}-${id}
+                   ${exercise} ${exercise}/${id} Exercise${nn_ex}_${k_ex}_* "${regex}")
+  set_tests_properties(${name} PROPERTIES LABELS exercises)
 endfunction()
 
 # soa_planted_solutions(<nn> <NN-topic> <list file>): the planted build and its tests.
@@ -73,5 +101,17 @@ function(soa_planted_solutions nn dir list_file)
     add_test(NAME ${name} COMMAND ex${nn}-solutions --report --gtest_filter=${filter})
     set_tests_properties(${name} PROPERTIES LABELS exercises ENVIRONMENT "SOA_PLANT=${full}"
                                             PASS_REGULAR_EXPRESSION "${_soa_expect_${full}}")
+    if(NOT "${_soa_reject_${full}}" STREQUAL "")
+      set_tests_properties(${name} PROPERTIES FAIL_REGULAR_EXPRESSION "${_soa_reject_${full}}")
+    endif()
+    if(NOT "${_soa_named_${full}}" STREQUAL "")
+      # A student past the exercise's count of failed runs: the count file, 99, written here.
+      set(runs ${CMAKE_CURRENT_BINARY_DIR}/planted/runs/${full})
+      file(WRITE ${runs}/${CMAKE_MATCH_1}.${CMAKE_MATCH_2}.failed-runs "99\n")
+      add_test(NAME ${name}.named COMMAND ex${nn}-solutions --report --gtest_filter=${filter})
+      set_tests_properties(${name}.named PROPERTIES LABELS exercises
+        ENVIRONMENT "SOA_PLANT=${full};SOA_EXERCISE_CASES=${runs}"
+        PASS_REGULAR_EXPRESSION "${_soa_named_${full}}")
+    endif()
   endforeach()
 endfunction()

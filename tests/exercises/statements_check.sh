@@ -10,6 +10,11 @@
 #   - the lesson program and the lesson's page in the notes point to each exercise where its
 #     material is taught ("now do N.K");
 #   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh);
+#   - each level 3 statement says after how many failed runs the checker names a mistake it
+#     knows ("after N failed runs", read by tests/support/exercise_check.hpp);
+#   - a statement or hint that cites a lesson's section gives its number and its title, as
+#     the lesson program numbers it (lessons/NN-topic/lesson.cpp, "/// ## K. Title"): the
+#     notes' pages name their headings, so the number alone finds nothing there;
 #   - no solution calls another exercise's function.
 #   statements_check.sh <source dir> <scratch dir>
 set -eu
@@ -44,6 +49,9 @@ for dir in exercises/[0-9][0-9]-*/; do
     done
     case "$meta" in
       *"Level 3 of 3"*)
+        awk -v ex="$ex" '/\*\*Exercise /{on = index($0, "**Exercise " ex ":") || index($0, "**Exercise " ex " ")} on' "$hpp" |
+          grep -q 'after [0-9][0-9]* failed runs' ||
+          say "$hpp: exercise $ex (level 3) does not say after how many failed runs its mistake is named"
         hints=$dir/hints.md
         if [ ! -f "$hints" ] || ! grep -q "^## $ex " "$hints"; then
           say "$dir: exercise $ex (level 3) has no hints in hints.md"
@@ -75,6 +83,26 @@ for dir in exercises/[0-9][0-9]-*/; do
       [ "$uses" -le 1 ] || say "$sol: calls $name, an exercise's function: a solution must stand alone"
     done
   fi
+  # Section citations: "lesson L, section K, "Title"" (over line breaks of the comments), the
+  # title that of section K of lessons/0L-*/lesson.cpp (in hints.md without Doxygen math).
+  for f in "$hpp" "$dir/hints.md"; do
+    [ -f "$f" ] || continue
+    text=$(sed 's|^ *///||' "$f" | tr '\n' ' ' | tr -s ' ')
+    bare=$(printf '%s' "$text" | grep -oE '[Ll]esson [0-9]+, sections? [0-9]+([^,0-9]|, [^"]|$)' || true)
+    [ -z "$bare" ] || say "$f: a section cited without its title: $(printf '%s\n' "$bare" | head -1)"
+    printf '%s' "$text" | grep -oE '[Ll]esson [0-9]+, section [0-9]+, "[^"]*"' | while IFS= read -r cite; do
+      l=$(printf '%s\n' "$cite" | sed -E 's/^[Ll]esson ([0-9]+),.*/\1/')
+      k=$(printf '%s\n' "$cite" | sed -E 's/^[^,]*, section ([0-9]+),.*/\1/')
+      title=$(printf '%s\n' "$cite" | sed -E 's/^[^"]*"(.*)"$/\1/')
+      prog=$(ls lessons/$(printf '%02d' "$l")-*/lesson.cpp 2>/dev/null | head -1)
+      heading=$(sed -n "s|^ *///  *## $k\. \(.*\)\$|\1|p" "$prog" 2>/dev/null | head -1)
+      plain=$(printf '%s\n' "$heading" | sed 's/\\f\$//g; s/\\mathcal //g; s/\\//g; s/[{}]//g; s/\^\*/*/g')
+      [ -n "$heading" ] || { echo "$f: lesson $l has no section $k ($cite)"; exit 1; }
+      [ "$title" = "$heading" ] ||
+        [ "$(printf '%s' "$title" | tr -d ' ')" = "$(printf '%s' "$plain" | tr -d ' ')" ] ||
+        { echo "$f: $cite, but section $k of $prog is \"$heading\""; exit 1; }
+    done || fail=1
+  done
   [ "$level3" -ge 2 ] || say "$hpp: lesson $lesson has $level3 exercises of level 3 (worked out), fewer than 2"
 done
 [ $fail = 0 ] && echo "every statement has its level, time and uses; hints, rows and pointers are in place"

@@ -16,6 +16,15 @@
 ///     hinge), expected against got;
 ///   - that case's inputs as code, and the worst case's (inline when short, else written to
 ///     $SOA_EXERCISE_CASES as a small program).
+/// A symptom says what was measured (which cases fail, a constant factor, a variant of the
+/// computation the result equals); it does not guess a cause the evidence does not single out.
+///
+/// Level 3 exercises (derive, predict, find the bug) are worked out by the student: their
+/// first messages give the symptom and the place (the check, the body, the case) but not the
+/// catalogue's mistake. The mistake is named once the student has had the exercise fail in
+/// as many runs as its statement says ("after 3 failed runs"; counted in $SOA_EXERCISE_CASES,
+/// which `make exercises` sets) or has read all of its hints (`make exercises HINT=N.K`,
+/// kept in $SOA_EXERCISE_HINTS, by default the folder `hints` beside $SOA_EXERCISE_CASES).
 /// `make exercises` shows every failed check's message under the exercise's row.
 #pragma once
 
@@ -27,8 +36,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -60,39 +72,150 @@ enum Tag : unsigned {
   kOwn2 = 1u << 17,           ///< another of the exercise's own
 };
 
-/// What a tag means for a student: the case it marks, and what a mistake confined to such
-/// cases usually is.
+/// What a tag means for a student: the cases it marks ("where ..."). A symptom built on a tag
+/// says which cases fail and which pass, nothing more: the same split has many causes.
 struct TagMeaning {
   Tag tag;
-  const char* cases;  ///< "cases where the chain moves"
-  const char* hint;   ///< "a velocity term is wrong or missing"
+  const char* cases;  ///< "it moves (the velocities are not zero)"
 };
 
 inline const std::vector<TagMeaning>& tag_meanings() {
   static const std::vector<TagMeaning> t = {
-      {kMoving, "it moves (the velocities are not zero)",
-       "a velocity-dependent term (Coriolis a(k), gyroscopic b(k) or a velocity itself) is "
-       "wrong or missing"},
-      {kAccelerating, "the accelerations are not zero", "a term in beta_dot is wrong or missing"},
-      {kGravity, "gravity is on",
-       "gravity enters wrong: alpha(n+1) = [0; -g], in base coordinates"},
-      {kPrismatic, "a hinge is prismatic",
-       "the hinge map H* (or its derivative) is assumed to be about an axis of rotation"},
-      {kHelical, "a hinge is helical", "the pitch term of the helical hinge is wrong or missing"},
-      {kMultiDof, "a hinge has several degrees of freedom",
-       "a hinge is assumed to have one degree of freedom (mind v_offset and the dof count)"},
-      {kSeveralBodies, "there is more than one body",
-       "the step from one body to the next: the index (phi(k+1,k) vs phi(k,k-1)) or the "
-       "direction of the sweep"},
-      {kExternalForces, "external forces act",
-       "the external forces enter wrong (b(k) = ... - f_ext)"},
-      {kSprings, "the hinges have springs or dampers", "the spring or damper term is wrong"},
-      {kOffsetCom, "the centre of mass is off the frame's origin",
-       "the first moment m p(x) (the off-diagonal blocks of M) is wrong"},
-      {kRotated, "the frames are rotated", "a rotation is transposed or applied on the wrong side"},
-      {kTranslated, "the frames are offset", "the offset l (or its sign, or its frame) is wrong"},
+      {kMoving, "it moves (the velocities are not zero)"},
+      {kAccelerating, "the accelerations are not zero"},
+      {kGravity, "gravity is on"},
+      {kPrismatic, "a hinge is prismatic"},
+      {kHelical, "a hinge is helical"},
+      {kMultiDof, "a hinge has several degrees of freedom"},
+      {kSeveralBodies, "there is more than one body"},
+      {kExternalForces, "external forces act"},
+      {kSprings, "the hinges have springs or dampers"},
+      {kOffsetCom, "the centre of mass is off the frame's origin"},
+      {kRotated, "the frames are rotated"},
+      {kTranslated, "the frames are offset"},
   };
   return t;
+}
+
+// --- The exercise being checked: its level and what its student has seen -------------------
+
+/// The exercise of the running test, read from its statement: the test suite is named
+/// `ExerciseL_K_Name` and its file is tests/exercises/NN-topic.cpp, whose statements are in
+/// exercises/NN-topic/exercises.hpp and hints in exercises/NN-topic/hints.md.
+struct ExerciseInfo {
+  std::string id;          ///< "7.12"; empty outside an exercise test
+  int level = 0;           ///< 1 to 3; 0 when the statement was not found
+  int explicit_after = 0;  ///< level 3: failed runs after which the mistake is named
+  int hints = 0;           ///< the number of hints of its ladder in hints.md
+};
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline int read_int(const std::string& path) {
+  std::ifstream in(path);
+  int n = 0;
+  return in >> n ? n : 0;
+}
+
+/// Reads the statement of exercise \p id from \p hpp and its hint ladder from \p hints.
+inline ExerciseInfo parse_exercise(const std::string& id, const std::string& hpp,
+                                   const std::string& hints) {
+  ExerciseInfo e;
+  e.id = id;
+  std::istringstream in(read_text(hpp));
+  std::string line;
+  bool on = false;
+  const std::regex level(R"(\*Level ([1-3]) of 3)"), after(R"(after ([0-9]+) failed runs)");
+  while (std::getline(in, line)) {
+    if (line.find("**Exercise ") != std::string::npos) {
+      if (on) break;
+      on = line.find("**Exercise " + id + ":") != std::string::npos ||
+           line.find("**Exercise " + id + " ") != std::string::npos;
+    }
+    std::smatch m;
+    if (on && e.level == 0 && std::regex_search(line, m, level)) e.level = std::stoi(m[1]);
+    if (on && e.explicit_after == 0 && std::regex_search(line, m, after))
+      e.explicit_after = std::stoi(m[1]);
+  }
+  // The ladder: the numbered items of the section "## <id> ..." (tests/exercises/hint.sh).
+  std::istringstream h(read_text(hints));
+  on = false;
+  const std::regex item(R"(^[0-9]+\. )");
+  while (std::getline(h, line)) {
+    if (line.rfind("## ", 0) == 0) on = line.rfind("## " + id + " ", 0) == 0;
+    if (on && std::regex_search(line, item)) ++e.hints;
+  }
+  return e;
+}
+
+/// The exercise of the running test (see ExerciseInfo); id empty outside a test.
+inline ExerciseInfo current_exercise() {
+  const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+  if (!info) return {};
+  const std::string suite = info->test_suite_name();
+  static const std::regex name(R"(^Exercise([0-9]+)_([0-9]+)_)");
+  std::smatch m;
+  if (!std::regex_search(suite, m, name)) return {};
+  const std::string id = m[1].str() + "." + m[2].str();
+  static std::map<std::string, ExerciseInfo> seen;
+  const auto it = seen.find(id);
+  if (it != seen.end()) return it->second;
+  const std::string file = info->file() ? info->file() : "";
+  const auto at = file.rfind("tests/exercises/");
+  ExerciseInfo e;
+  e.id = id;
+  if (at != std::string::npos && file.size() > 4 && file.substr(file.size() - 4) == ".cpp") {
+    const std::string topic = file.substr(at + 16, file.size() - 4 - at - 16);
+    const std::string dir = file.substr(0, at) + "exercises/" + topic + "/";
+    e = parse_exercise(id, dir + "exercises.hpp", dir + "hints.md");
+  }
+  return seen[id] = e;
+}
+
+/// Where the failed runs are counted ($SOA_EXERCISE_CASES) and the hints seen are kept
+/// ($SOA_EXERCISE_HINTS, else `hints` beside the cases: build/exercises/hints for make
+/// exercises); empty when not set.
+inline std::string cases_dir() {
+  const char* d = std::getenv("SOA_EXERCISE_CASES");
+  return d && *d ? d : "";
+}
+inline std::string hints_dir() {
+  const char* d = std::getenv("SOA_EXERCISE_HINTS");
+  if (d && *d) return d;
+  const std::string c = cases_dir();
+  return c.empty() ? "" : c + "/../hints";
+}
+
+/// How far the student of a level 3 exercise is: failed runs before this one, hints seen.
+struct Progress {
+  int failed_runs = 0;  ///< before this run
+  int hints_seen = 0;
+  bool named = false;  ///< the catalogue's mistake may be named
+};
+
+/// Counts this run as a failed run of exercise \p e (once per process) and says whether the
+/// mistake may be named: always below level 3; at level 3 after e.explicit_after failed
+/// runs, or once every hint of the ladder has been shown.
+inline Progress progress(const ExerciseInfo& e) {
+  static std::map<std::string, Progress> done;  // one count per run of the exercise
+  const auto it = done.find(e.id);
+  if (it != done.end()) return it->second;
+  Progress p;
+  const std::string cases = cases_dir(), hints = hints_dir();
+  if (e.level == 3 && !cases.empty()) {
+    const std::string path = cases + "/" + e.id + ".failed-runs";
+    p.failed_runs = read_int(path);
+    std::ofstream(path) << p.failed_runs + 1 << "\n";
+  }
+  if (!hints.empty()) p.hints_seen = read_int(hints + "/" + e.id);
+  p.named = e.level != 3 || (e.explicit_after > 0 && p.failed_runs >= e.explicit_after) ||
+            (e.hints > 0 && p.hints_seen >= e.hints);
+  return done[e.id] = p;
 }
 
 // --- Inputs as code ----------------------------------------------------------------------------
@@ -331,14 +454,20 @@ inline Naming dof_blocks(const Model& m, const std::string& sym) {
 
 // --- The catalogue of mistakes ------------------------------------------------------------------
 
-/// A classic wrong answer of an exercise, computed from the reference for one case.
+/// A classic wrong answer of an exercise, computed from the reference for one case. Of kind
+/// kMeasured it is not a diagnosis but a variant of the computation whose equality with the
+/// result is reported as what it is, a measurement: \p says completes "your result matches"
+/// ("the expected value with D in place of D^-1").
 struct Mistake {
   const char* kind;  ///< "transpose", "sign", "neighbour index", "dropped term", "wrong frame",
-                     ///< "degrees", ...
+                     ///< "degrees", ..., or kMeasured
   std::string says;  ///< "your result equals phi(k+1,k) V: did you transpose?"
   MatX<double> value;
 };
 using Mistakes = std::vector<Mistake>;
+
+/// The kind of a Mistake that is a measured variant, not a named mistake.
+inline constexpr const char* kMeasured = "measured";
 
 /// The sign-flipped answer: a mistake every exercise has.
 template <class D>
@@ -384,6 +513,7 @@ class Check {
     worst_.add(r, i);
     if (r <= tol_) return true;
     fail(tags);
+    track_factor(g, e);
     if (r >= worst_r_) {
       worst_r_ = r;
       worst_i_ = i;
@@ -393,16 +523,20 @@ class Check {
       worst_norm_ = e.norm();
       worst_nan_ = !g.allFinite();
     }
-    // The case shown in full is the simplest that fails (the smallest result), the worst of
-    // those: easier to follow by hand than the worst of all.
-    if (shown_i_ < 0 || g.size() < shown_got_.size() ||
-        (g.size() == shown_got_.size() && r > shown_r_)) {
-      shown_i_ = i;
-      shown_r_ = r;
-      shown_got_ = g;
-      shown_exp_ = e;
-      shown_inputs_ = inputs ? inputs() : "";
-      naming_ = naming;
+    // The case shown in full is the simplest that fails: the smallest result, then the
+    // shortest inputs as code (fewer bodies, zeros, short readable numbers), then the worst
+    // of those: easier to follow by hand than the worst of all.
+    if (shown_i_ < 0 || g.size() <= shown_got_.size()) {
+      std::string in = inputs ? inputs() : "";
+      if (shown_i_ < 0 || g.size() < shown_got_.size() || in.size() < shown_inputs_.size() ||
+          (in.size() == shown_inputs_.size() && r > shown_r_)) {
+        shown_i_ = i;
+        shown_r_ = r;
+        shown_got_ = g;
+        shown_exp_ = e;
+        shown_inputs_ = std::move(in);
+        naming_ = naming;
+      }
     }
     if (mistakes && examined_ < kExamine) {
       ++examined_;
@@ -435,34 +569,40 @@ class Check {
   /// "step" when a test gives each body or step of a case separately.
   void count_as(std::string unit) { unit_ = std::move(unit); }
 
-  /// Says what \p tag means for this check (its cases, and the likely cause of a failure
-  /// confined to them), in place of the general wording of tag_meanings().
-  void tag_meaning(Tag tag, const char* cases, const char* hint) {
-    overrides_.push_back(TagMeaning{tag, cases, hint});
-  }
+  /// Says what \p tag means for this check (the cases it marks, "where ..."), in place of
+  /// the general wording of tag_meanings().
+  void tag_meaning(Tag tag, const char* cases) { overrides_.push_back(TagMeaning{tag, cases}); }
 
   int failed() const { return failed_; }
   double worst() const { return worst_.value(); }
 
-  /// The feedback: first line for the table's row, the rest under it.
+  /// The feedback: first line for the table's row, the rest under it. For a level 3
+  /// exercise whose student has not yet earned it (see progress()), the catalogue's mistake
+  /// is not named: the message gives the symptom and the place, and says when it will.
   std::string message() const {
     if (!shape_.empty()) return shape_;
+    const ExerciseInfo ex = current_exercise();
+    const Progress pr = ex.level == 3 ? progress(ex) : Progress{0, 0, true};
     std::ostringstream s;
     s << what_ << ": wrong in " << failed_ << " of " << cases_ << " " << unit_ << "s (worst "
       << error_words() << ", " << unit_ << " " << worst_i_ << ")\n";
-    bool named = false;
+    bool named = false, known = false;
     for (const Tally& t : tallies_)
-      if (t.informative > 0 && t.matched == t.informative) {
-        s << "  likely mistake (" << t.kind << "): " << t.says << "\n";
-        named = true;
+      if (t.kind != std::string(kMeasured) && t.informative > 0 && t.matched == t.informative) {
+        known = true;
+        if (pr.named) s << "  likely mistake (" << t.kind << "): " << t.says << "\n";
+        named = pr.named;
       }
     if (!named) {
-      for (const Tally& t : tallies_)
-        if (t.informative > 0 && t.matched * 2 >= t.informative && t.matched > 0)
-          s << "  perhaps (" << t.kind << ", " << t.matched << " of " << t.informative
-            << " failing cases): " << t.says << "\n";
-      for (const std::string& sym : symptoms()) s << "  symptom: " << sym << "\n";
+      if (pr.named)
+        for (const Tally& t : tallies_)
+          if (t.kind != std::string(kMeasured) && t.informative > 0 &&
+              t.matched * 2 >= t.informative && t.matched > 0)
+            s << "  perhaps (" << t.kind << ", " << t.matched << " of " << t.informative
+              << " failing " << unit_ << "s): " << t.says << "\n";
+      for (const std::string& sym : symptoms(pr.named)) s << "  symptom: " << sym << "\n";
     }
+    if (!pr.named) s << withheld(ex, pr, known);
     s << where();
     s << case_code();
     return s.str();
@@ -512,29 +652,73 @@ class Check {
     for (const auto& t : meanings()) (tags & t.tag ? with_ : without_)[t.tag].failed++;
   }
 
-  // A tag that all failing cases have while the cases without it all pass.
-  std::vector<std::string> symptoms() const {
+  // What was measured: a variant of the computation the result equals (kMeasured, shown
+  // only when \p measured_variants), a constant factor, then a tag that all failing cases
+  // have while the cases without it all pass (or the reverse).
+  std::vector<std::string> symptoms(bool measured_variants) const {
+    const std::string every = failed_ == cases_ ? "in every " + unit_ : "in every failing " + unit_;
+    std::vector<std::string> out;
+    if (measured_variants)
+      for (const Tally& t : tallies_)
+        if (t.kind == std::string(kMeasured) && t.informative > 0 && t.matched == t.informative)
+          out.push_back(every + ", your result matches " + t.says);
+    if (factor_ok_ && factor_cases_ > 0 && std::abs(factor_ - 1) > 1e-3) {
+      char b[96];
+      std::snprintf(b, sizeof b, "your result is %.3f times the expected value ", factor_);
+      out.push_back(b + every);
+    }
     // "Fails only where X" says more than "passes wherever Y": those first.
     std::vector<std::string> only, never;
     for (const auto& t : meanings()) {
       const Count w = at(with_, t.tag), wo = at(without_, t.tag);
       if (wo.cases > 0 && wo.failed == 0 && w.failed > 0)
-        only.push_back("every " + unit_ + " unless " + std::string(t.cases) + " passes; " +
-                       std::to_string(w.failed) + " of " + std::to_string(w.cases) +
-                       " where it does fail: " + t.hint);
+        only.push_back("it fails only where " + std::string(t.cases) + ": " +
+                       std::to_string(w.failed) + " of those " + std::to_string(w.cases) + " " +
+                       unit_ + "s fail, and every other " + unit_ + " passes");
       else if (w.cases > 0 && w.failed == 0 && wo.failed > 0)
-        never.push_back("every " + unit_ + " where " + std::string(t.cases) + " passes; " +
-                        std::to_string(wo.failed) + " of " + std::to_string(wo.cases) +
-                        " others fail");
+        never.push_back("it passes wherever " + std::string(t.cases) + "; " +
+                        std::to_string(wo.failed) + " of the " + std::to_string(wo.cases) +
+                        " other " + unit_ + "s fail");
     }
-    std::vector<std::string> out = only;
-    out.insert(out.end(), never.begin(), never.end());
-    if (out.size() > 2) out.resize(2);
+    only.insert(only.end(), never.begin(), never.end());
+    if (only.size() > 2) only.resize(2);
+    out.insert(out.end(), only.begin(), only.end());
     if (out.empty() && failed_ == cases_)
-      out.push_back("every " + unit_ +
-                    " fails, whatever it has: the formula itself (or the layout of the result: "
-                    "order, tip first) is off");
+      out.push_back("every " + unit_ + " fails, whatever it has (no kind of case passes)");
     return out;
+  }
+
+  // Level 3, the mistake not yet named: when it will be.
+  std::string withheld(const ExerciseInfo& ex, const Progress& pr, bool known) const {
+    std::ostringstream s;
+    s << "  "
+      << (known ? "the checker knows this mistake: it names it" : "known mistakes are named");
+    if (ex.explicit_after > 0) {
+      s << " after " << ex.explicit_after << " failed runs of make exercises";
+      if (!cases_dir().empty()) s << " (this is failed run " << pr.failed_runs + 1 << ")";
+    }
+    if (ex.hints > 0)
+      s << (ex.explicit_after > 0 ? ", or " : " ") << "once you have read all " << ex.hints
+        << " hints (make exercises HINT=" << ex.id << ", " << pr.hints_seen << " read so far)";
+    s << "\n";
+    return s.str();
+  }
+
+  // A constant factor between the result and the expected value, over the failing cases.
+  template <class G, class E>
+  void track_factor(const G& g, const E& e) {
+    const double ee = e.squaredNorm();
+    if (!factor_ok_ || ee == 0 || !g.allFinite()) {
+      factor_ok_ = false;
+      return;
+    }
+    const double c = (g.array() * e.array()).sum() / ee;
+    if ((g - c * e).norm() > 1e-6 * std::max(g.norm(), 1e-300) ||
+        (factor_cases_ > 0 && std::abs(c - factor_) > 1e-6 * std::abs(factor_))) {
+      factor_ok_ = false;
+      return;
+    }
+    if (factor_cases_++ == 0) factor_ = c;
   }
   static Count at(const std::map<unsigned, Count>& v, unsigned tag) {
     const auto it = v.find(tag);
@@ -661,6 +845,9 @@ class Check {
   int cases_ = 0, failed_ = 0, examined_ = 0;
   std::map<unsigned, Count> with_, without_;
   std::vector<Tally> tallies_;
+  bool factor_ok_ = true;  // every failing case so far is factor_ times the expected value
+  double factor_ = 1;
+  int factor_cases_ = 0;
   std::string shape_;
   double worst_r_ = -1, worst_abs_ = 0, worst_norm_ = 0;
   bool worst_nan_ = false;
