@@ -38,14 +38,18 @@ while [ "$i" -le "$n" ]; do
     say "failed run $i of $ex does not say 'this is failed run $i'"
   i=$((i + 1))
 done
-out=$(run)
-if printf '%s\n' "$out" | grep -Eq "$named"; then
-  echo "failed run $i of $ex names the mistake:"
-  printf '%s\n' "$out" | grep -E "$named" | head -3
-else
-  say "failed run $i of $ex (after $n) does not name the mistake:"
-  printf '%s\n' "$out" | head -20
-fi
+# expect_named WHAT: this run's report names the mistake (WHAT says which run it is).
+expect_named() {
+  out=$(run)
+  if printf '%s\n' "$out" | grep -Eq "$named"; then
+    echo "$1 names the mistake:"
+    printf '%s\n' "$out" | grep -E "$named" | head -3
+  else
+    say "$1 does not name the mistake:"
+    printf '%s\n' "$out" | head -20
+  fi
+}
+expect_named "failed run $i of $ex (after $n)"
 # The hint ladder, from a fresh count.
 rm -rf "$scratch"
 mkdir -p "$scratch/cases"
@@ -63,13 +67,6 @@ fi
 last=$(sh tests/exercises/hint.sh "$ex" "$scratch/hints")
 printf '%s\n' "$last" | grep -q "(hint $total of $total" ||
   say "HINT=$ex does not reach hint $total of $total: $last"
-out=$(run)
-if printf '%s\n' "$out" | grep -Eq "$named"; then
-  echo "after all $total hints of $ex, its first failed run names the mistake:"
-  printf '%s\n' "$out" | grep -E "$named" | head -3
-else
-  say "after all $total hints, $ex does not name the mistake:"
-  printf '%s\n' "$out" | head -20
-fi
+expect_named "after all $total hints of $ex, its first failed run"
 [ $fail = 0 ] && echo "$ex: named after $n failed runs, or after the $total hints"
 exit $fail
