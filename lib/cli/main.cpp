@@ -18,6 +18,7 @@
 #include "help.hpp"
 #include "json_out.hpp"
 #include "output.hpp"
+#include "soa/printable.hpp"
 #include "soa/scene.hpp"
 #include "verbs.hpp"
 
@@ -191,13 +192,20 @@ std::string outside_limits(const Scene& s, const State& x) {
     if (!l || f.locked) continue;
     const Body& B = s.model.body(f.k);
     const double q = x.theta[B.q_offset], qd = x.beta[B.v_offset];
-    std::string what;
-    if (q < l->lower || q > l->upper)
-      what = "q = " + brief(q) + " outside [" + brief(l->lower) + ", " + brief(l->upper) + "]";
-    else if (std::abs(qd) > l->velocity)
-      what = "qd = " + brief(qd) + " above its limit " + brief(l->velocity);
+    std::vector<std::string> what;  // every violation of the hinge
+    if (q < l->lower)
+      what.push_back("q = " + brief(q) + " below its lower limit " + brief(l->lower));
+    if (q > l->upper)
+      what.push_back("q = " + brief(q) + " above its upper limit " + brief(l->upper));
+    if (qd < -l->velocity)
+      what.push_back("qd = " + brief(qd) + " below its limit -" + brief(l->velocity));
+    if (qd > l->velocity)
+      what.push_back("qd = " + brief(qd) + " above its limit " + brief(l->velocity));
     if (what.empty()) continue;
-    if (n++ < 3) out += (out.empty() ? "" : ", ") + std::string("'") + f.name + "' " + what;
+    std::string who = l->hinge.empty() ? "the hinge of '" + printable(f.name) + "'"
+                                       : "joint '" + printable(l->hinge) + "'";
+    for (std::size_t i = 0; i < what.size(); ++i) who += (i ? ", " : ": ") + what[i];
+    if (n++ < 3) out += (out.empty() ? "" : "; ") + who;
   }
   if (n == 0) return "";
   if (n > 3) out += ", and " + std::to_string(n - 3) + " more";

@@ -9,6 +9,7 @@
 #include "soa/scene.hpp"
 
 #include "scene_detail.hpp"
+#include "soa/printable.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -33,11 +34,12 @@ namespace {
 using json = nlohmann::json;
 
 /// Tolerances of the format (docs/scenes.md states them).
-constexpr double kUnitTol = 1e-6;       // quaternions: | |q| - 1 | <= 1e-6
-constexpr double kZeroAxis = 1e-9;      // an axis shorter than this is "zero"
-constexpr double kParallel = 1e-6;      // universal hinge: |a1 x a2| below this is parallel
-constexpr double kSymmetricTol = 1e-9;  // inertia: |J - J*| <= 1e-9 max|J|
-constexpr double kTriangleTol = 1e-9;   // inertia: a + b >= c (1 - 1e-9)
+constexpr double kUnitTol = 1e-6;        // quaternions: | |q| - 1 | <= 1e-6
+constexpr double kZeroAxis = 1e-9;       // an axis shorter than this is "zero"
+constexpr double kParallel = 1e-6;       // universal hinge: |a1 x a2| below this is parallel
+constexpr double kSymmetricTol = 1e-9;   // inertia: |J - J*| <= 1e-9 max|J|
+constexpr double kTriangleTol = 1e-9;    // inertia: a + b >= c (1 - 1e-9)
+constexpr double kMaxPlacement = 1e150;  // |position| of a placement (m): its square is finite
 
 /// A short number for messages.
 std::string num(double x) {
@@ -49,6 +51,11 @@ std::string num(double x) {
 /// "1 number", "3 numbers".
 std::string count(std::size_t n, const char* noun) {
   return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+/// A string of the file in double quotes, as a message shows it (soa::printable()).
+std::string in_quotes(const std::string& s) {
+  return "\"" + printable(s) + "\"";
 }
 
 /// "bodies[3]".
@@ -86,8 +93,12 @@ std::string describe(const json& j) {
   switch (j.type()) {
     case json::value_t::string: {
       std::string s = j.get<std::string>();
-      if (s.size() > 24) s = s.substr(0, 21) + "...";
-      return "the string \"" + s + "\"";
+      if (s.size() > 24) {
+        std::size_t cut = 21;
+        while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+        s = s.substr(0, cut) + "...";
+      }
+      return "the string " + in_quotes(s);
     }
     case json::value_t::boolean:
       return j.get<bool>() ? "true" : "false";
@@ -209,10 +220,14 @@ namespace {
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
+  /// A reader of a URDF's document: "bodies[i]" is link names[i].first, "bodies[i].hinge"
+  /// joint names[i].second.
+  Reader(std::string file, const std::vector<std::pair<std::string, std::string>>& names)
+      : file_(std::move(file)), names_(&names) {}
   const std::string& file() const { return file_; }
 
   [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
-    throw Error(file_ + ": " + path + ": " + problem);
+    throw Error(file_ + ": " + named(path) + ": " + problem);
   }
   [[noreturn]] void fail(const Path& path, const std::string& problem) const {
     fail(path.str(), problem);
@@ -220,6 +235,22 @@ class Reader {
   /// A problem of the file itself: "<file>: <problem>".
   [[noreturn]] void fail_file(const std::string& problem) const {
     throw Error(file_ + ": " + problem);
+  }
+
+  /// \p path, with a URDF's link or joint for "bodies[i]" ("joint 'j1' axis").
+  std::string named(const std::string& path) const {
+    const std::string prefix = "bodies[";
+    if (!names_ || path.compare(0, prefix.size(), prefix) != 0) return path;
+    const std::size_t close = path.find(']');
+    const std::size_t i = std::stoul(path.substr(prefix.size(), close - prefix.size()));
+    if (i >= names_->size()) return path;
+    std::string rest = path.substr(close + 1);
+    const bool hinge = rest.compare(0, 6, ".hinge") == 0;
+    const std::string who = hinge ? "joint '" + printable((*names_)[i].second) + "'"
+                                  : "link '" + printable((*names_)[i].first) + "'";
+    if (hinge) rest = rest.substr(6);
+    if (!rest.empty() && rest[0] == '.') rest = " " + rest.substr(1);
+    return who + rest;
   }
 
   void expect_object(const json& j, const Path& path) const {
@@ -232,7 +263,7 @@ class Reader {
     for (const auto& item : obj.items()) {
       bool ok = false;
       for (const char* a : allowed) ok = ok || item.key() == a;
-      if (!ok) fail(path, "unknown field \"" + item.key() + "\"");
+      if (!ok) fail(path, "unknown field " + in_quotes(item.key()));
     }
   }
 
@@ -322,6 +353,7 @@ class Reader {
 
  private:
   std::string file_;
+  const std::vector<std::pair<std::string, std::string>>* names_ = nullptr;
 };
 
 /// What the reader keeps of the bodies while it streams them, in file order: the Body and
@@ -358,15 +390,15 @@ struct FileBodies {
   }
 };
 
-/// The hinge of a body: type, axes, pitch and placement.
-void read_hinge(const Reader& r, const json& j, const Path& path, Body& b) {
+/// The hinge of a body: type, axes, pitch and placement; returns its "name" ("" when none).
+std::string read_hinge(const Reader& r, const json& j, const Path& path, Body& b) {
   r.expect_object(j, path);
   const Path type_path = path.key("type");
   const std::string type = r.string(r.required(j, path, "type"), type_path);
   const auto it = hinge_types().find(type);
   if (it == hinge_types().end())
-    r.fail(type_path, "unknown hinge type \"" + type +
-                          "\" (expected revolute, prismatic, helical, universal, spherical, "
+    r.fail(type_path, "unknown hinge type " + in_quotes(type) +
+                          " (expected revolute, prismatic, helical, universal, spherical, "
                           "free or locked)");
   b.hinge.type = it->second;
   const HingeType t = b.hinge.type;
@@ -374,13 +406,13 @@ void read_hinge(const Reader& r, const json& j, const Path& path, Body& b) {
                         t == HingeType::Helical || t == HingeType::Universal;
   for (const auto& item : j.items()) {
     const std::string& k = item.key();
-    const bool applies = k == "type" || k == "placement" || (k == "axis" && one_axis) ||
-                         (k == "axis2" && t == HingeType::Universal) ||
+    const bool applies = k == "type" || k == "name" || k == "placement" ||
+                         (k == "axis" && one_axis) || (k == "axis2" && t == HingeType::Universal) ||
                          (k == "pitch" && t == HingeType::Helical);
     if (applies) continue;
     if (k == "axis" || k == "axis2" || k == "pitch")
       r.fail(path, "field \"" + k + "\" does not apply to a " + type + " hinge");
-    r.fail(path, "unknown field \"" + k + "\"");
+    r.fail(path, "unknown field " + in_quotes(k));
   }
   if (one_axis) b.hinge.axis = r.axis(r.required(j, path, "axis"), path.key("axis"));
   if (t == HingeType::Universal) {
@@ -397,11 +429,19 @@ void read_hinge(const Reader& r, const json& j, const Path& path, Body& b) {
     r.only_fields(*p, pp, {"position", "rotation"});
     Vec3<double> l = Vec3<double>::Zero();
     Mat3<double> R = Mat3<double>::Identity();
-    if (const json* x = Reader::optional(*p, "position")) l = r.vec3(*x, pp.key("position"));
+    if (const json* x = Reader::optional(*p, "position")) {
+      l = r.vec3(*x, pp.key("position"));
+      if (!(safe_norm(l) <= kMaxPlacement))
+        r.fail(pp.key("position"), num(safe_norm(l)) +
+                                       " m from the parent's frame, more than the 1e+150 m a "
+                                       "placement may have (its products would overflow)");
+    }
     if (const json* x = Reader::optional(*p, "rotation"))
       R = r.quaternion(*x, pp.key("rotation")).matrix();
     b.placement = Pose(R, l);
   }
+  const json* name = Reader::optional(j, "name");
+  return name ? r.string(*name, path.key("name")) : std::string();
 }
 
 /// The optional joint spring and damper.
@@ -434,7 +474,7 @@ void read_spring(const Reader& r, const json& j, const Path& path, Body& b) {
 /// The optional "limits" {"lower", "upper", "effort", "velocity"} and "friction" of a 1-dof
 /// hinge: kept for the record (HingeLimits), not used by the dynamics.
 HingeLimits read_limits(const Reader& r, const json* limits, const json* friction, const Path& path,
-                        const Body& b) {
+                        const Body& b, const std::string& hinge_name) {
   const HingeType t = b.hinge.type;
   const bool one_dof =
       t == HingeType::Revolute || t == HingeType::Prismatic || t == HingeType::Helical;
@@ -443,6 +483,7 @@ HingeLimits read_limits(const Reader& r, const json* limits, const json* frictio
     r.fail(lp, std::string("applies to revolute, prismatic and helical hinges only, not to a ") +
                    hinge_type_name(t) + " hinge");
   HingeLimits l;
+  l.hinge = hinge_name;
   if (limits) {
     r.expect_object(*limits, lp);
     r.only_fields(*limits, lp, {"lower", "upper", "effort", "velocity"});
@@ -508,11 +549,12 @@ void read_body(const Reader& r, const json& j, std::size_t i, FileBodies& fb) {
       r.fail(path, "the inertia about the hinge frame overflows (mass " + num(m) + ", com at " +
                        num(safe_norm(com)) + " from it)");
   }
-  read_hinge(r, r.required(j, path, "hinge"), path.key("hinge"), b);
+  const std::string hinge_name = read_hinge(r, r.required(j, path, "hinge"), path.key("hinge"), b);
   if (const json* s = Reader::optional(j, "spring")) read_spring(r, *s, path.key("spring"), b);
   const json* limits = Reader::optional(j, "limits");
   const json* friction = Reader::optional(j, "friction");
-  if (limits || friction) fb.limits.emplace_back(i, read_limits(r, limits, friction, path, b));
+  if (limits || friction)
+    fb.limits.emplace_back(i, read_limits(r, limits, friction, path, b, hinge_name));
   unsigned char flags = b.hinge.type == HingeType::Locked ? FileBodies::kLocked : 0;
   if (massless) flags |= FileBodies::kMassless;
   if (const json* v = Reader::optional(j, "q")) {
@@ -538,7 +580,7 @@ void read_body(const Reader& r, const json& j, std::size_t i, FileBodies& fb) {
   const auto [it, fresh] = fb.index.try_emplace(b.name, i);
   if (!fresh)
     r.fail(name_path,
-           "duplicate name \"" + b.name + "\" (" + body_path(it->second) + " has it too)");
+           "duplicate name " + in_quotes(b.name) + " (" + body_path(it->second) + " has it too)");
   fb.parent.push_back(p);
   fb.flags.push_back(flags);
   fb.body.push_back(std::move(b));
@@ -581,11 +623,11 @@ class SceneSax {
   bool key(json::string_t& k) {
     Level& l = stack_.back();
     if (stack_.size() == 1) {
-      if (!is_top_field(k)) r_.fail("top level", "unknown field \"" + k + "\"");
+      if (!is_top_field(k)) r_.fail("top level", "unknown field " + in_quotes(k));
       stream_next_ = k == "bodies";
     }
     const auto [it, fresh] = l.node->get_ref<json::object_t&>().try_emplace(std::move(k));
-    if (!fresh) r_.fail(path(false), "field \"" + it->first + "\" given twice");
+    if (!fresh) r_.fail(path(false), "field " + in_quotes(it->first) + " given twice");
     l.key = &it->first;
     l.slot = &it->second;
     return true;
@@ -720,11 +762,11 @@ void check_chain(const Reader& r, const FileBodies& fb) {
     const Path body = kBodies.index(i);
     const std::size_t p = fb.parent[i];
     if (p == FileBodies::kUnknown)
-      r.fail(body.key("parent"),
-             "no body named \"" + fb.parent_name(i) + "\" (a parent is \"base\" or a body's name)");
+      r.fail(body.key("parent"), "no body named " + in_quotes(fb.parent_name(i)) +
+                                     " (a parent is \"base\" or a body's name)");
     std::size_t& c = p == FileBodies::kBase ? first : child[p];
     if (c != kNone)
-      r.fail(body.key("parent"), "\"" + fb.parent_name(i) + "\" already has a child (" +
+      r.fail(body.key("parent"), in_quotes(fb.parent_name(i)) + " already has a child (" +
                                      body_path(c) + "); serial chains only, no branches");
     c = i;
   }
@@ -739,7 +781,7 @@ void check_chain(const Reader& r, const FileBodies& fb) {
     // of the output) is the order of the chain.
     if (misplaced != kNone)
       r.fail(kBodies.index(misplaced).key("parent"),
-             "\"" + fb.parent_name(misplaced) + "\" is listed after this body (" +
+             in_quotes(fb.parent_name(misplaced)) + " is listed after this body (" +
                  body_path(fb.parent[misplaced]) +
                  "); list the bodies base first, each after its parent");
     return;
@@ -750,15 +792,15 @@ void check_chain(const Reader& r, const FileBodies& fb) {
   while (reached[u]) ++u;
   std::size_t loop = 1;
   for (std::size_t i = fb.parent[u]; i != u; i = fb.parent[i]) ++loop;
-  std::string cycle = fb.body[u].name;
+  std::string cycle = printable(fb.body[u].name);
   std::size_t at = 1;
   for (std::size_t i = fb.parent[u]; i != u; i = fb.parent[i], ++at) {
     if (loop <= 8 || at < 4 || at + 2 >= loop)
-      cycle += " -> " + fb.body[i].name;
+      cycle += " -> " + printable(fb.body[i].name);
     else if (at == 4)
       cycle += " -> ... (" + std::to_string(loop - 6) + " bodies) ...";
   }
-  cycle += " -> " + fb.body[u].name;
+  cycle += " -> " + printable(fb.body[u].name);
   r.fail(kBodies.index(u).key("parent"),
          "loop (" + cycle + ", following parents) never reaches \"base\"");
 }
@@ -855,7 +897,7 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
       r.only_fields(e, path, {"body", "moment", "force"});
       const std::string name = r.string(r.required(e, path, "body"), path.key("body"));
       const auto it = fb.index.find(name);
-      if (it == fb.index.end()) r.fail(path.key("body"), "no body named \"" + name + "\"");
+      if (it == fb.index.end()) r.fail(path.key("body"), "no body named " + in_quotes(name));
       const std::size_t b = it->second;
       Vec3<double> N = Vec3<double>::Zero(), F = Vec3<double>::Zero();
       if (const json* x = Reader::optional(e, "moment")) N = r.vec3(*x, path.key("moment"));
@@ -872,8 +914,8 @@ Scene assemble(const json& doc, bool streamed, FileBodies& fb, const Reader& r) 
       if (what != "kinematics" && what != "jacobian" && what != "inverse-dynamics" &&
           what != "mass-matrix")
         r.fail(compute.index(i),
-               "unknown computation \"" + what +
-                   "\" (expected kinematics, jacobian, inverse-dynamics or mass-matrix)");
+               "unknown computation " + in_quotes(what) +
+                   " (expected kinematics, jacobian, inverse-dynamics or mass-matrix)");
       s.compute.push_back(what);
     }
   }
@@ -1055,6 +1097,19 @@ Scene load_file(const std::string& path, std::uint64_t max_bytes) {
 
 }  // namespace
 
+namespace detail {
+
+Scene scene_from_urdf(const UrdfScene& u, const std::string& file) {
+  const Reader r(file, u.names);
+  FileBodies fb;
+  for (std::size_t i = 0; i < u.bodies.size(); ++i) read_body(r, u.bodies[i], i, fb);
+  json top = u.top;
+  top["bodies"] = nullptr;  // as SceneSax leaves it when the bodies were streamed
+  return assemble(top, /*streamed=*/true, fb, r);
+}
+
+}  // namespace detail
+
 Scene parse_scene(const std::string& json_text, const std::string& name) {
   try {
     const Reader r(name);
@@ -1077,28 +1132,11 @@ Scene load_scene(const std::string& path, const UrdfOptions& urdf) {
                   " applies to URDF files, not to a JSON scene");
     return load_scene(path);
   }
-  detail::UrdfText t;
   try {
-    t = detail::convert_urdf(path, urdf);
+    const detail::UrdfScene u = detail::convert_urdf(path, urdf);
+    return detail::scene_from_urdf(u, path);
   } catch (const std::bad_alloc&) {
     throw Error(path + ": out of memory while reading the URDF");
-  }
-  try {
-    return parse_scene(t.json, path);
-  } catch (const Error& e) {  // "<file>: bodies[3].hinge.axis: ..." names the link or joint
-    std::string m = e.what();
-    const std::string prefix = path + ": bodies[";
-    if (m.compare(0, prefix.size(), prefix) != 0) throw;
-    const std::size_t close = m.find(']', prefix.size());
-    const std::size_t i = std::stoul(m.substr(prefix.size(), close - prefix.size()));
-    if (i >= t.bodies.size()) throw;
-    std::string rest = m.substr(close + 1);
-    const bool hinge = rest.compare(0, 6, ".hinge") == 0;
-    const std::string who =
-        hinge ? "joint '" + t.bodies[i].second + "'" : "link '" + t.bodies[i].first + "'";
-    if (hinge) rest = rest.substr(6);
-    if (!rest.empty() && rest[0] == '.') rest = " " + rest.substr(1);
-    throw Error(path + ": " + who + rest);
   }
 }
 

@@ -1,7 +1,13 @@
 // URDF scenes: a robot description read with urdfdom, mapped onto the course's serial chain
-// and written as a JSON scene (docs/scenes.md, "URDF input"), which the JSON reader then
-// reads. Loading a URDF and loading the JSON that `soa convert` prints are the same reading
-// of the same text: the two give the same model bit for bit.
+// as the JSON reader's document (docs/scenes.md, "URDF input"), a structure that the JSON
+// reader checks and assembles; `soa convert` writes that same structure as JSON text, so
+// loading a URDF and loading the JSON that `soa convert` prints give the same model bit for
+// bit.
+//
+// Before urdfdom sees the file, a linear scan bounds its nesting and its element count (the
+// XML parser recurses per level); after, the model is checked as a tree (a joint cycle, a
+// link that is its own parent) and its names as UTF-8 text, and it is freed link by link (its
+// links own their children: freeing a long chain would recurse once per link).
 //
 // The mapping (the table of docs/scenes.md): a link is a body, the joint above it is its
 // hinge; the root link and whatever is fixed to it is the ground; the chain is the path from
@@ -22,10 +28,13 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "scene_detail.hpp"
 #include "soa/phi.hpp"
+#include "soa/printable.hpp"
 #include "soa/rotation.hpp"
 #include "soa/scene.hpp"
 #include "soa/spatial_inertia.hpp"
@@ -33,13 +42,15 @@
 namespace soa {
 namespace {
 
-/// Everything urdfdom says goes here, not to the terminal; its first error explains a failed
-/// parse. (console_bridge's handler is global: one parse at a time, under urdfdom_mutex.)
+/// Everything urdfdom says goes here, not to the terminal. Its errors and warnings are kept:
+/// urdfdom logs a value it cannot read and goes on without it (a link keeps a zero
+/// <inertial>), so any of them makes the file an error. (console_bridge's handler is global:
+/// one parse at a time, under urdfdom_mutex.)
 class Capture : public console_bridge::OutputHandler {
  public:
   Capture() : level_(console_bridge::getLogLevel()) {
     console_bridge::useOutputHandler(this);
-    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_ERROR);
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_WARN);
   }
   ~Capture() override {
     console_bridge::restorePreviousOutputHandler();
@@ -48,12 +59,17 @@ class Capture : public console_bridge::OutputHandler {
   Capture(const Capture&) = delete;
   Capture& operator=(const Capture&) = delete;
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && error_.empty()) error_ = text;
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
+    if (++count_ <= 3) said_ += (said_.empty() ? "" : "; then: ") + printable(text);
   }
-  const std::string& error() const { return error_; }
+  /// urdfdom's first three errors and warnings, in its words ("" when it had none).
+  std::string said() const {
+    return count_ > 3 ? said_ + " (and " + std::to_string(count_ - 3) + " more)" : said_;
+  }
 
  private:
-  std::string error_;
+  std::string said_;
+  int count_ = 0;
   console_bridge::LogLevel level_;
 };
 std::mutex urdfdom_mutex;
@@ -70,11 +86,21 @@ std::string brief(double x) {
   std::snprintf(buf, sizeof buf, "%g", x);
   return buf;
 }
-std::string vec(const Vec3<double>& v) {
-  return "[" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + "]";
+/// A name of the file in single quotes, as a message or a comment shows it.
+std::string quote(const std::string& name) {
+  return "'" + printable(name) + "'";
 }
-std::string json_string(const std::string& s) {
-  return nlohmann::json(s).dump();
+/// The first few of \p names, then how many more: a message stays short however large the
+/// robot.
+std::string first_few(const std::vector<std::string>& names, std::size_t few = 6) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size() && i < few; ++i) s += (i ? ", " : "") + names[i];
+  if (names.size() > few) s += ", and " + std::to_string(names.size() - few) + " more";
+  return s;
+}
+using json = nlohmann::json;
+json to_json(const Vec3<double>& v) {
+  return json::array({v[0], v[1], v[2]});
 }
 
 Vec3<double> to_vec(const urdf::Vector3& v) {
@@ -108,7 +134,7 @@ const char* type_name(int t) {
   }
 }
 
-/// One body of the scene being written: a link of the chain and the joint above it.
+/// One body of the scene being built: a link of the chain and the joint above it.
 struct Entry {
   std::string link, joint, joint_type;
   std::string hinge;  // the scene's hinge type
@@ -126,21 +152,28 @@ struct Entry {
   std::vector<std::string> notes;  // comments above the body
 };
 
+/// The links of \p l's subtree, \p l first, depth first (without recursion: a chain of 10^5
+/// links is 10^5 levels deep).
+std::vector<const urdf::Link*> subtree(const urdf::Link& l) {
+  std::vector<const urdf::Link*> out, stack{&l};
+  while (!stack.empty()) {
+    const urdf::Link* x = stack.back();
+    stack.pop_back();
+    out.push_back(x);
+    for (auto c = x->child_links.rbegin(); c != x->child_links.rend(); ++c)
+      stack.push_back(c->get());
+  }
+  return out;
+}
+
 class Converter {
  public:
   Converter(std::string file, const urdf::ModelInterface& model, const UrdfOptions& o)
       : file_(std::move(file)), model_(model), options_(o) {}
 
-  /// (link, joint) of each body of the scene, in its order (after run()).
-  std::vector<std::pair<std::string, std::string>> bodies() const {
-    std::vector<std::pair<std::string, std::string>> b;
-    for (const Entry& e : entries_) b.emplace_back(e.link, e.joint);
-    return b;
-  }
-
-  std::string run() {
+  detail::UrdfScene run() {
     for (const std::string& j : options_.lock) {
-      if (!model_.getJoint(j)) fail("--lock: no joint named '" + j + "'" + names_of_joints());
+      if (!model_.getJoint(j)) fail("--lock: no joint named " + quote(j) + names_of_joints());
       locked_.insert(j);
     }
     std::size_t n_moving = 0;
@@ -154,8 +187,8 @@ class Converter {
     std::size_t first = 1;  // the first moving joint on the path
     while (first < path.size() && !moving(*path[first]->parent_joint)) ++first;
     if (first == path.size())
-      fail("link '" + tip->name + "': fixed to the root '" + root->name +
-           "' all the way: no moving joint between them, no chain (choose another tip with "
+      fail("link " + quote(tip->name) + ": fixed to the root " + quote(root->name) +
+           " all the way: no moving joint between them, no chain (choose another tip with "
            "--tip LINK)");
     // The ground: the root and what is fixed to it, up to the first moving joint.
     Pose ground;  // root -> the first moving joint's parent link
@@ -164,7 +197,7 @@ class Converter {
     double ground_mass = 0;
     std::vector<std::string> ground_links;
     for (std::size_t i = 0; i < first; ++i) {
-      ground_links.push_back("'" + path[i]->name + "'");
+      ground_links.push_back(quote(path[i]->name));
       if (path[i]->inertial) ground_mass += path[i]->inertial->mass;
       for (const urdf::LinkSharedPtr& c : path[i]->child_links)
         if (c.get() != path[i + 1]) ground_mass += fixed_subtree(*c, *path[i], ground_links);
@@ -173,7 +206,7 @@ class Converter {
     for (const auto& [name, l] : model_.links_)
       geometry = geometry || !l->visual_array.empty() || !l->collision_array.empty();
     if (geometry) header_.push_back("<visual> and <collision> geometry: not used");
-    header_.push_back("the ground: " + join(ground_links) +
+    header_.push_back("the ground: " + first_few(ground_links) +
                       (ground_mass > 0 ? " (" + brief(ground_mass) +
                                              " kg fixed to the world: not part of the dynamics)"
                                        : ""));
@@ -184,8 +217,8 @@ class Converter {
       if (i == first && first > 1) {
         e.placement = ground * e.placement;
         e.origin = nullptr;
-        e.notes.push_back("placement: the joint's origin composed with the fixed joints from '" +
-                          root->name + "'");
+        e.notes.push_back("placement: the joint's origin composed with the fixed joints from " +
+                          quote(root->name));
       }
       // Links fixed to this one off the chain: rigid mass.
       SpatialInertia M = inertia_of(e);
@@ -193,16 +226,16 @@ class Converter {
       for (const urdf::LinkSharedPtr& c : link.child_links) {
         if (i + 1 < path.size() && c.get() == path[i + 1]) continue;
         std::vector<std::string> merged;
-        const SpatialInertia side = branch_inertia(*c, Pose(), link, merged);
+        const SpatialInertia side = branch_inertia(*c, link, merged, e.notes);
         if (side.mass() > 0) M = M + side, merged_mass = true;
-        e.notes.push_back("merged, fixed to it off the chain: " + join(merged) +
+        e.notes.push_back("merged, fixed to it off the chain: " + first_few(merged) +
                           (side.mass() > 0 ? " (" + brief(side.mass()) + " kg)" : " (massless)"));
       }
       if (merged_mass) set_inertia(M, e);  // else the link's own numbers, as the file has them
       entries_.push_back(std::move(e));
     }
     check_moves_mass();
-    return text(tip->name);
+    return scene(tip->name);
   }
 
  private:
@@ -211,15 +244,16 @@ class Converter {
   bool moving(const urdf::Joint& j) const {
     return j.type != urdf::Joint::FIXED && !locked_.count(j.name);
   }
+  /// A joint --lock fixed: said the same way wherever it is, on the chain or off it.
+  std::string locked_note(const urdf::Joint& j) const {
+    return "joint " + quote(j.name) + " (" + type_name(j.type) +
+           ") locked at its zero position by --lock";
+  }
 
   std::string names_of_joints() const {
-    std::string s;
-    int n = 0;
-    for (const auto& [name, j] : model_.joints_) {
-      if (n++ == 12) return s + ", ...)";
-      s += (s.empty() ? " (joints: '" : ", '") + name + "'";
-    }
-    return s.empty() ? " (the model has no joint)" : s + ")";
+    std::vector<std::string> names;
+    for (const auto& [name, j] : model_.joints_) names.push_back(quote(name));
+    return names.empty() ? " (the model has no joint)" : " (joints: " + first_few(names) + ")";
   }
 
   static std::string join(const std::vector<std::string>& v) {
@@ -229,11 +263,11 @@ class Converter {
   }
 
   /// The moving joints between the root and \p l.
-  std::vector<const urdf::Joint*> moving_above(const urdf::Link& l) const {
-    std::vector<const urdf::Joint*> js;
+  std::size_t moving_above(const urdf::Link& l) const {
+    std::size_t n = 0;
     for (const urdf::Link* x = &l; x->parent_joint; x = x->getParent().get())
-      if (moving(*x->parent_joint)) js.push_back(x->parent_joint.get());
-    return js;
+      n += moving(*x->parent_joint);
+    return n;
   }
 
   /// --tip, or the one leaf below every moving joint.
@@ -241,27 +275,31 @@ class Converter {
     if (!options_.tip.empty()) {
       const urdf::LinkConstSharedPtr l = model_.getLink(options_.tip);
       if (!l) {
-        std::string names;
-        int n = 0;
-        for (const auto& [name, link] : model_.links_)
-          if (n++ < 12) names += (names.empty() ? "'" : ", '") + name + "'";
-        fail("--tip: no link named '" + options_.tip + "' (links: " + names +
-             (model_.links_.size() > 12 ? ", ...)" : ")"));
+        std::vector<std::string> names;
+        for (const auto& [name, link] : model_.links_) names.push_back(quote(name));
+        fail("--tip: no link named " + quote(options_.tip) + " (links: " + first_few(names) + ")");
       }
       return l.get();
     }
     std::size_t n_moving = 0;
     for (const auto& [name, j] : model_.joints_) n_moving += moving(*j);
+    // Below every moving joint: the depth-first order meets a leaf's ancestors before it.
+    std::unordered_map<const urdf::Link*, std::size_t> above;  // moving joints above a link
     std::vector<const urdf::Link*> leaves, full;
-    collect_leaves(root, leaves);
-    for (const urdf::Link* l : leaves)
-      if (moving_above(*l).size() == n_moving) full.push_back(l);
+    for (const urdf::Link* l : subtree(root)) {
+      const urdf::Link* p = l->getParent().get();
+      const std::size_t n = p ? above[p] + moving(*l->parent_joint) : 0;
+      above[l] = n;
+      if (!l->child_links.empty()) continue;
+      leaves.push_back(l);
+      if (n == n_moving) full.push_back(l);
+    }
     if (full.size() == 1) return full[0];
     std::vector<std::string> names;
-    for (const urdf::Link* l : (full.empty() ? leaves : full)) names.push_back("'" + l->name + "'");
+    for (const urdf::Link* l : (full.empty() ? leaves : full)) names.push_back(quote(l->name));
     if (full.empty())
-      fail("a tree, not a chain: no single path from '" + root.name +
-           "' passes every moving joint (its ends: " + join(names) +
+      fail("a tree, not a chain: no single path from " + quote(root.name) +
+           " passes every moving joint (its ends: " + first_few(names) +
            "); choose the tip with --tip LINK, and lock the joints off its path with --lock JOINT");
     // Several ends, each below every moving joint: their paths part after the last moving
     // joint, and fixed joints only follow. The chain ends where they part.
@@ -277,46 +315,52 @@ class Converter {
       while (i < n_common && i < p.size() && p[i] == common[i]) ++i;
       n_common = i;
     }
-    header_.push_back(join(names) + " end the chain, fixed to '" + common[n_common - 1]->name +
-                      "': merged into it (keep one's frame with --tip LINK)");
+    header_.push_back(first_few(names) + " end the chain, fixed to " +
+                      quote(common[n_common - 1]->name) +
+                      ": merged into it (keep one's frame with --tip LINK)");
     return common[n_common - 1];
-  }
-  void collect_leaves(const urdf::Link& l, std::vector<const urdf::Link*>& out) const {
-    if (l.child_links.empty()) out.push_back(&l);
-    for (const urdf::LinkSharedPtr& c : l.child_links) collect_leaves(*c, out);
   }
 
   /// A side branch from \p on must be fixed all the way: the error names its moving joint.
   void require_fixed(const urdf::Joint& j, const urdf::Link& on) const {
     if (!moving(j)) return;
-    const std::string where = &on == tip_ ? "beyond the tip '" + on.name + "'"
-                                          : "a branch off the chain at '" + on.name + "'";
-    fail("joint '" + j.name + "' (" + type_name(j.type) + ") moves '" + j.child_link_name + "', " +
-         where + ": the course's chains are serial; lock it with --lock " + j.name +
+    const std::string where = &on == tip_ ? "beyond the tip " + quote(on.name)
+                                          : "a branch off the chain at " + quote(on.name);
+    fail("joint " + quote(j.name) + " (" + type_name(j.type) + ") moves " +
+         quote(j.child_link_name) + ", " + where +
+         ": the course's chains are serial; lock it with --lock " + printable(j.name) +
          ", or choose a tip beyond it with --tip LINK");
   }
 
   /// The mass of a branch fixed to the ground (checked fixed all the way); names its links.
-  double fixed_subtree(const urdf::Link& l, const urdf::Link& on,
-                       std::vector<std::string>& names) const {
-    require_fixed(*l.parent_joint, on);
-    names.push_back("'" + l.name + "'");
-    double m = l.inertial ? l.inertial->mass : 0;
-    for (const urdf::LinkSharedPtr& c : l.child_links) m += fixed_subtree(*c, on, names);
+  double fixed_subtree(const urdf::Link& l, const urdf::Link& on, std::vector<std::string>& names) {
+    double m = 0;
+    for (const urdf::Link* x : subtree(l)) {
+      require_fixed(*x->parent_joint, on);
+      if (locked_.count(x->parent_joint->name)) header_.push_back(locked_note(*x->parent_joint));
+      names.push_back(quote(x->name));
+      if (x->inertial) m += x->inertial->mass;
+    }
     return m;
   }
 
   /// The inertia of the branch from \p l (fixed all the way) about the frame of \p on, the
-  /// chain's link it hangs on; \p T_on_parent is the pose of l's parent in on's frame.
-  SpatialInertia branch_inertia(const urdf::Link& l, const Pose& T_on_parent, const urdf::Link& on,
-                                std::vector<std::string>& names) const {
-    require_fixed(*l.parent_joint, on);
-    names.push_back("'" + l.name + "'");
-    const Pose T = T_on_parent * to_pose(l.parent_joint->parent_to_joint_origin_transform);
-    Entry own;
-    read_inertial(l, own);
-    SpatialInertia M = transform(Phi(T), inertia_of(own));
-    for (const urdf::LinkSharedPtr& c : l.child_links) M = M + branch_inertia(*c, T, on, names);
+  /// chain's link it hangs on; names its links, and notes the joints --lock fixed.
+  SpatialInertia branch_inertia(const urdf::Link& l, const urdf::Link& on,
+                                std::vector<std::string>& names,
+                                std::vector<std::string>& notes) const {
+    std::unordered_map<const urdf::Link*, Pose> T;  // on <- the link's frame
+    SpatialInertia M;
+    for (const urdf::Link* x : subtree(l)) {
+      require_fixed(*x->parent_joint, on);
+      if (locked_.count(x->parent_joint->name)) notes.push_back(locked_note(*x->parent_joint));
+      names.push_back(quote(x->name));
+      const Pose up = x == &l ? Pose() : T.at(x->getParent().get());
+      const Pose Tx = T[x] = up * to_pose(x->parent_joint->parent_to_joint_origin_transform);
+      Entry own;
+      read_inertial(*x, own);
+      M = M + transform(Phi(Tx), inertia_of(own));
+    }
     return M;
   }
 
@@ -324,7 +368,7 @@ class Converter {
   void read_inertial(const urdf::Link& l, Entry& e) const {
     if (!l.inertial) return;
     const urdf::Inertial& I = *l.inertial;
-    const std::string where = "link '" + l.name + "': inertial: ";
+    const std::string where = "link " + quote(l.name) + ": inertial: ";
     if (!std::isfinite(I.mass)) fail(where + "mass is not a finite number");
     Mat3<double> J;
     J << I.ixx, I.ixy, I.ixz, I.ixy, I.iyy, I.iyz, I.ixz, I.iyz, I.izz;
@@ -335,7 +379,7 @@ class Converter {
         fail(where +
              "mass 0 with a non-zero inertia (a massless link has neither: leave "
              "<inertial> out)");
-      e.notes.push_back("link '" + l.name + "': <inertial> of mass 0: a massless frame");
+      e.notes.push_back("link " + quote(l.name) + ": <inertial> of mass 0: a massless frame");
       return;
     }
     const std::string problem = detail::inertia_problem(J);
@@ -372,15 +416,15 @@ class Converter {
     e.link = link.name;
     e.joint = joint.name;
     e.joint_type = type_name(joint.type);
-    const std::string where = "joint '" + joint.name + "': ";
+    const std::string where = "joint " + quote(joint.name) + ": ";
     e.origin = &joint.parent_to_joint_origin_transform;
     e.placement = to_pose(*e.origin);
     if (!e.placement.l().allFinite() || !e.placement.R().allFinite())
       fail(where + "origin is not finite");
     if (joint.mimic)
-      fail(where + "mimics '" + joint.mimic->joint_name +
-           "': the course's hinges have coordinates of their own; lock it with --lock " +
-           joint.name);
+      fail(where + "mimics " + quote(joint.mimic->joint_name) +
+           ": the course's hinges have coordinates of their own; lock it with --lock " +
+           printable(joint.name));
     const bool locked = locked_.count(joint.name) > 0;
     switch (locked ? int(urdf::Joint::FIXED) : joint.type) {
       case urdf::Joint::REVOLUTE:
@@ -395,15 +439,13 @@ class Converter {
         break;
       case urdf::Joint::FIXED:
         e.hinge = "locked";
-        if (locked)
-          e.notes.push_back("joint '" + joint.name + "' (" + e.joint_type +
-                            ") locked at its zero position by --lock");
+        if (locked) e.notes.push_back(locked_note(joint));
         break;
       case urdf::Joint::PLANAR:
         fail(where +
              "a planar joint (3 dofs in a plane) has no hinge in the course (revolute, "
              "prismatic, helical, universal, spherical, free); lock it with --lock " +
-             joint.name);
+             printable(joint.name));
       default:
         fail(where + "unknown joint type");
     }
@@ -439,66 +481,70 @@ class Converter {
     std::vector<std::string> massless;
     for (auto e = entries_.rbegin(); e != entries_.rend(); ++e) {
       mass = mass || !e->massless;
-      if (!mass) massless.insert(massless.begin(), "'" + e->link + "'");
-      if (!mass && e->hinge != "locked")
-        fail("joint '" + e->joint + "' (" + e->joint_type + ") moves only massless links (" +
-             join(massless) + "): nothing of mass outboard of it, its motion is undefined");
+      if (!mass) massless.push_back(quote(e->link));
+      if (!mass && e->hinge != "locked") {
+        std::reverse(massless.begin(), massless.end());
+        fail("joint " + quote(e->joint) + " (" + e->joint_type + ") moves only massless links (" +
+             first_few(massless) + "): nothing of mass outboard of it, its motion is undefined");
+      }
     }
   }
 
-  /// The JSON scene, with comments where the URDF was folded or something was dropped.
-  std::string text(const std::string& tip) const {
-    std::string s;
-    s += "// Converted by `soa convert` from " + file_ + " (robot '" + model_.getName() + "'):\n";
-    s += "// the chain from its root to link '" + tip + "' (docs/scenes.md, URDF input).\n";
-    s += "// URDF has no gravity: the scene takes 9.81 m/s^2 along -z, as ROS does.\n";
-    s += "// Joint limits and friction are kept (\"limits\", \"friction\") but not used: the\n";
-    s += "// course's dynamics have neither.\n";
-    for (const std::string& h : header_) s += "// " + h + "\n";
-    s += "{\n  \"name\": " + json_string(model_.getName().empty() ? tip : model_.getName()) + ",\n";
-    s += "  \"gravity\": [0, 0, -9.81],\n  \"bodies\": [\n";
+  /// The JSON reader's document, with the comments where the URDF was folded or something
+  /// was dropped.
+  detail::UrdfScene scene(const std::string& tip) const {
+    detail::UrdfScene u;
+    u.header = {"Converted by `soa convert` from " + printable(file_) + " (robot " +
+                    quote(model_.getName()) + "):",
+                "the chain from its root to link " + quote(tip) + " (docs/scenes.md, URDF input).",
+                "URDF has no gravity: the scene takes 9.81 m/s^2 along -z, as ROS does.",
+                "Joint limits and friction are kept (\"limits\", \"friction\") but not used: the",
+                "course's dynamics have neither."};
+    u.header.insert(u.header.end(), header_.begin(), header_.end());
+    u.top = json::object();
+    u.top["name"] = model_.getName().empty() ? tip : model_.getName();
+    u.top["gravity"] = json::array({0.0, 0.0, -9.81});
     std::string parent = "base";
-    for (std::size_t i = 0; i < entries_.size(); ++i) {
-      const Entry& e = entries_[i];
-      s += "    // link '" + e.link + "' on joint '" + e.joint + "' (" + e.joint_type + ")";
-      s += e.joint_type == e.hinge ? "\n" : ": " + e.hinge + "\n";
-      for (const std::string& n : e.notes) s += "    // " + n + "\n";
-      s += "    {\n      \"name\": " + json_string(e.link) +
-           ", \"parent\": " + json_string(parent) + ",\n";
+    for (const Entry& e : entries_) {
+      json b = json::object();
+      b["name"] = e.link;
+      b["parent"] = parent;
       if (!e.massless) {
-        s += "      \"mass\": " + num(e.mass) + ", \"com\": " + vec(e.com) + ",\n";
-        s += "      \"inertia\": {\"Ixx\": " + num(e.J(0, 0)) + ", \"Iyy\": " + num(e.J(1, 1)) +
-             ", \"Izz\": " + num(e.J(2, 2)) + ", \"Ixy\": " + num(e.J(0, 1)) +
-             ", \"Ixz\": " + num(e.J(0, 2)) + ", \"Iyz\": " + num(e.J(1, 2)) + "},\n";
+        b["mass"] = e.mass;
+        b["com"] = to_json(e.com);
+        b["inertia"] = {{"Ixx", e.J(0, 0)}, {"Iyy", e.J(1, 1)}, {"Izz", e.J(2, 2)},
+                        {"Ixy", e.J(0, 1)}, {"Ixz", e.J(0, 2)}, {"Iyz", e.J(1, 2)}};
       }
-      s += "      \"hinge\": {\"type\": \"" + e.hinge + "\"";
-      if (e.hinge == "revolute" || e.hinge == "prismatic") s += ", \"axis\": " + vec(e.axis);
-      s += ", \"placement\": {\"position\": " + vec(e.placement.l());
+      json h = {{"type", e.hinge}, {"name", e.joint}};
+      if (e.hinge == "revolute" || e.hinge == "prismatic") h["axis"] = to_json(e.axis);
+      json placement = {{"position", to_json(e.placement.l())}};
       if (e.origin) {
-        if (!is_identity(e.origin->rotation))
-          s += ", \"rotation\": [" + num(e.origin->rotation.x) + ", " + num(e.origin->rotation.y) +
-               ", " + num(e.origin->rotation.z) + ", " + num(e.origin->rotation.w) + "]";
+        const urdf::Rotation& r = e.origin->rotation;
+        if (!is_identity(r)) placement["rotation"] = json::array({r.x, r.y, r.z, r.w});
       } else if (!e.placement.R().isIdentity(0)) {
         const Eigen::Vector4d q = UnitQuaternion::from_matrix(e.placement.R()).coeffs();
-        s += ", \"rotation\": [" + num(q[0]) + ", " + num(q[1]) + ", " + num(q[2]) + ", " +
-             num(q[3]) + "]";
+        placement["rotation"] = json::array({q[0], q[1], q[2], q[3]});
       }
-      s += "}}";
-      if (e.damping > 0) s += ",\n      \"spring\": {\"damping\": " + num(e.damping) + "}";
+      h["placement"] = std::move(placement);
+      b["hinge"] = std::move(h);
+      if (e.damping > 0) b["spring"] = {{"damping", e.damping}};
       if (e.limits) {
         const urdf::JointLimits& l = *e.limits;
-        s += ",\n      \"limits\": {";
-        if (!e.continuous)
-          s += "\"lower\": " + num(l.lower) + ", \"upper\": " + num(l.upper) + ", ";
-        s += "\"effort\": " + num(l.effort) + ", \"velocity\": " + num(l.velocity) + "}";
+        json limits = {{"effort", l.effort}, {"velocity", l.velocity}};
+        if (!e.continuous) limits["lower"] = l.lower, limits["upper"] = l.upper;
+        b["limits"] = std::move(limits);
       }
-      if (e.friction > 0) s += ",\n      \"friction\": " + num(e.friction);
-      s += "\n    }";
-      s += i + 1 < entries_.size() ? ",\n" : "\n";
+      if (e.friction > 0) b["friction"] = e.friction;
+      std::vector<std::string> notes{"link " + quote(e.link) + " on joint " + quote(e.joint) +
+                                     " (" + e.joint_type +
+                                     (e.joint_type == e.hinge ? ")" : "): " + e.hinge)};
+      notes.insert(notes.end(), e.notes.begin(), e.notes.end());
+      u.bodies.push_back(std::move(b));
+      u.notes.push_back(std::move(notes));
+      u.names.emplace_back(e.link, e.joint);
       parent = e.link;
     }
-    s += "  ]\n}\n";
-    return s;
+    return u;
   }
 
   std::string file_;
@@ -530,28 +576,220 @@ std::string read_text(const std::string& path) {
   return text;
 }
 
+/// The XML's nesting and element count, in one pass over the text, before urdfdom (whose XML
+/// parser recurses once per level) sees it: a refusal names the line. Comments, CDATA,
+/// processing instructions and the DOCTYPE are skipped; quotes inside a tag are respected.
+void check_xml_shape(const std::string& path, const std::string& xml) {
+  std::size_t depth = 0, elements = 0, line = 1;
+  const std::size_t n = xml.size();
+  // Moves i past the first \p end at or after i (counting lines); false when there is none.
+  auto skip_to = [&](std::size_t& i, const char* end) {
+    const std::size_t at = xml.find(end, i);
+    const std::size_t stop = at == std::string::npos ? n : at + std::strlen(end);
+    line += std::count(xml.begin() + i, xml.begin() + stop, '\n');
+    i = stop;
+    return at != std::string::npos;
+  };
+  for (std::size_t i = 0; i < n;) {
+    if (xml[i] != '<') {
+      line += xml[i] == '\n';
+      ++i;
+      continue;
+    }
+    if (xml.compare(i, 4, "<!--") == 0) {
+      skip_to(i, "-->");
+    } else if (xml.compare(i, 9, "<![CDATA[") == 0) {
+      skip_to(i, "]]>");
+    } else if (xml.compare(i, 2, "<?") == 0) {
+      skip_to(i, "?>");
+    } else if (xml.compare(i, 2, "<!") == 0) {  // DOCTYPE, with an internal subset in [ ]
+      int brackets = 0;
+      for (++i; i < n && (xml[i] != '>' || brackets > 0); ++i) {
+        brackets += xml[i] == '[' ? 1 : xml[i] == ']' ? -1 : 0;
+        line += xml[i] == '\n';
+      }
+      ++i;
+    } else if (xml.compare(i, 2, "</") == 0) {
+      if (depth > 0) --depth;
+      skip_to(i, ">");
+    } else {
+      char quote_char = 0;  // inside an attribute value
+      std::size_t j = i + 1;
+      for (; j < n && (quote_char || xml[j] != '>'); ++j) {
+        if (quote_char ? xml[j] == quote_char : (xml[j] == '"' || xml[j] == '\''))
+          quote_char = quote_char ? 0 : xml[j];
+        line += xml[j] == '\n';
+      }
+      const bool empty = j < n && xml[j - 1] == '/';
+      if (++elements > kMaxUrdfElements)
+        throw Error(path + ": line " + std::to_string(line) + ": more than " +
+                    std::to_string(kMaxUrdfElements) +
+                    " XML elements, the most a URDF file may have");
+      if (!empty && ++depth > std::size_t(kMaxUrdfDepth))
+        throw Error(path + ": line " + std::to_string(line) + ": XML nested more than " +
+                    std::to_string(kMaxUrdfDepth) + " levels deep, the most a URDF file may be");
+      i = j + 1;
+    }
+  }
+}
+
+/// The model checked as a tree, and its names as text: a link that is its own parent, a link
+/// with two parent joints, a cycle of joints (which urdfdom does not refuse in every shape),
+/// a name that is not UTF-8.
+void check_tree(const std::string& path, const urdf::ModelInterface& m) {
+  auto fail = [&](const std::string& problem) { throw Error(path + ": " + problem); };
+  if (!is_utf8(m.getName())) fail("robot " + quote(m.getName()) + ": its name is not UTF-8 text");
+  std::unordered_map<std::string, const urdf::Joint*> parent_joint;  // by child link
+  for (const auto& [name, j] : m.joints_) {
+    if (!is_utf8(name)) fail("joint " + quote(name) + ": its name is not UTF-8 text");
+    if (j->parent_link_name == j->child_link_name)
+      fail("joint " + quote(name) + " makes link " + quote(j->child_link_name) +
+           " its own parent: the links of a URDF form a tree");
+    const auto [it, fresh] = parent_joint.emplace(j->child_link_name, j.get());
+    if (!fresh)
+      fail("link " + quote(j->child_link_name) + " is the child of two joints, " +
+           quote(it->second->name) + " and " + quote(name) +
+           ": the links of a URDF form a tree, each below one joint");
+  }
+  for (const auto& [name, l] : m.links_)
+    if (!is_utf8(name)) fail("link " + quote(name) + ": its name is not UTF-8 text");
+  // Every link is reached from the root; the ones that are not hang on a cycle of joints.
+  std::unordered_set<const urdf::Link*> reached;
+  std::vector<const urdf::Link*> stack{m.getRoot().get()};
+  while (!stack.empty()) {
+    const urdf::Link* l = stack.back();
+    stack.pop_back();
+    if (!reached.insert(l).second) continue;
+    for (const urdf::LinkSharedPtr& c : l->child_links) stack.push_back(c.get());
+  }
+  if (reached.size() == m.links_.size()) return;
+  for (const auto& [name, l] : m.links_) {
+    if (reached.count(l.get())) continue;
+    std::unordered_map<const urdf::Link*, std::size_t> at;  // the walk up from l, in order
+    std::vector<const urdf::Link*> walk;
+    const urdf::Link* x = l.get();
+    while (x && !at.count(x)) {
+      at.emplace(x, walk.size());
+      walk.push_back(x);
+      const auto it = parent_joint.find(x->name);
+      x = it == parent_joint.end() ? nullptr : m.getLink(it->second->parent_link_name).get();
+    }
+    if (!x)
+      fail("link " + quote(name) + " is not connected to the root " + quote(m.getRoot()->name));
+    std::vector<std::string> joints;  // the cycle, following parents
+    for (std::size_t i = at[x]; i < walk.size(); ++i)
+      joints.push_back(quote(parent_joint.at(walk[i]->name)->name));
+    fail("joints " + first_few(joints) + " form a cycle through link " + quote(x->name) +
+         ": the links of a URDF form a tree");
+  }
+}
+
+/// Frees urdfdom's model link by link: each link owns its children, so that the last
+/// reference to a long chain's root would free it recursively, one level per link.
+struct FlatRelease {
+  urdf::ModelInterfaceSharedPtr& model;
+  ~FlatRelease() {
+    if (!model) return;
+    for (auto& [name, l] : model->links_) {
+      l->child_links.clear();
+      l->child_joints.clear();
+      l->parent_joint.reset();
+    }
+    model->root_link_.reset();
+  }
+};
+
+/// `soa convert`'s text of \p u: the comments, and the document through nlohmann's writer,
+/// which escapes every string; numbers as the shortest text that reads back to the same bits.
+class Writer {
+ public:
+  std::string text(const detail::UrdfScene& u) {
+    for (const std::string& h : u.header) s_ += "// " + h + "\n";
+    s_ += "{\n  \"name\": " + u.top.at("name").dump() + ",\n";
+    s_ += "  \"gravity\": ";
+    value(u.top.at("gravity"));
+    s_ += ",\n  \"bodies\": [\n";
+    for (std::size_t i = 0; i < u.bodies.size(); ++i) {
+      for (const std::string& n : u.notes[i]) s_ += "    // " + n + "\n";
+      s_ += "    {\n";
+      bool first = true;
+      for (const char* key :
+           {"name", "parent", "mass", "com", "inertia", "hinge", "spring", "limits", "friction"}) {
+        const auto it = u.bodies[i].find(key);
+        if (it == u.bodies[i].end()) continue;
+        // name and parent on one line, mass and com on one line, then a line each
+        const bool same_line = std::strcmp(key, "parent") == 0 || std::strcmp(key, "com") == 0;
+        s_ += first ? "      " : same_line ? ", " : ",\n      ";
+        first = false;
+        s_ += json(key).dump() + ": ";
+        value(*it);
+      }
+      s_ += i + 1 < u.bodies.size() ? "\n    },\n" : "\n    }\n";
+    }
+    s_ += "  ]\n}\n";
+    return std::move(s_);
+  }
+
+ private:
+  void value(const json& v) {
+    if (v.is_number()) {
+      s_ += num(v.get<double>());
+    } else if (v.is_array()) {
+      s_ += "[";
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        s_ += i ? ", " : "";
+        value(v[i]);
+      }
+      s_ += "]";
+    } else if (v.is_object()) {
+      s_ += "{";
+      bool first = true;
+      auto field = [&](const std::string& k, const json& x) {
+        s_ += (first ? "" : ", ") + json(k).dump() + ": ";
+        first = false;
+        value(x);
+      };
+      static const char* const order[] = {
+          "type", "name", "axis", "placement", "position", "rotation", "Ixx",      "Iyy",    "Izz",
+          "Ixy",  "Ixz",  "Iyz",  "lower",     "upper",    "effort",   "velocity", "damping"};
+      for (const char* k : order)
+        if (v.contains(k)) field(k, v.at(k));
+      for (const auto& [k, x] : v.items())
+        if (std::find_if(std::begin(order), std::end(order),
+                         [&](const char* o) { return k == o; }) == std::end(order))
+          field(k, x);
+      s_ += "}";
+    } else {
+      s_ += v.dump();  // a string, escaped
+    }
+  }
+  std::string s_;
+};
+
 }  // namespace
 
 namespace detail {
 
-UrdfText convert_urdf(const std::string& path, const UrdfOptions& options) {
+UrdfScene convert_urdf(const std::string& path, const UrdfOptions& options) {
   const std::string xml = read_text(path);
+  check_xml_shape(path, xml);
   urdf::ModelInterfaceSharedPtr model;
-  std::string error;
+  const FlatRelease release{model};
+  std::string said;
   {
     const std::lock_guard<std::mutex> lock(urdfdom_mutex);
     const Capture capture;
     model = urdf::parseURDF(xml);
-    error = capture.error();
+    said = capture.said();
   }
   if (!model)
     throw Error(path + ": not a valid URDF (urdfdom: " +
-                (error.empty() ? std::string("no reason given") : error) + ")");
-  Converter c(path, *model, options);
-  UrdfText t;
-  t.json = c.run();
-  t.bodies = c.bodies();
-  return t;
+                (said.empty() ? std::string("no reason given") : said) + ")");
+  if (!said.empty())
+    throw Error(path + ": urdfdom could not read all of it: " + said +
+                " (it would go on without what it could not read)");
+  check_tree(path, *model);
+  return Converter(path, *model, options).run();
 }
 
 }  // namespace detail
@@ -571,7 +809,9 @@ bool is_urdf(const std::string& path) {
 }
 
 std::string urdf_to_scene_json(const std::string& path, const UrdfOptions& options) {
-  return detail::convert_urdf(path, options).json;
+  const detail::UrdfScene u = detail::convert_urdf(path, options);
+  detail::scene_from_urdf(u, path);  // the JSON reader's checks: what is written reads back
+  return Writer().text(u);
 }
 
 }  // namespace soa

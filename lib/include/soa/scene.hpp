@@ -33,6 +33,8 @@ struct HingeLimits {
   double effort = std::numeric_limits<double>::infinity();    ///< |T| (N m or N)
   double velocity = std::numeric_limits<double>::infinity();  ///< |beta| (rad/s or m/s)
   double friction = 0;                                        ///< Coulomb friction (N m or N)
+  /// The hinge's own name (the URDF joint's; a JSON hinge's "name"), "" when it has none.
+  std::string hinge;
   /// The position has a bound (URDF's continuous joints have none).
   bool has_position() const { return std::isfinite(lower) || std::isfinite(upper); }
 };
@@ -98,6 +100,13 @@ constexpr std::uint64_t kMaxSceneBytes = std::uint64_t(1) << 30;
 /// The deepest nesting of JSON arrays and objects in a scene file (a scene needs 6 levels:
 /// top level, "bodies", a body, its "hinge", "placement", "rotation").
 constexpr int kMaxSceneDepth = 100;
+/// The deepest nesting of XML elements in a URDF file (a URDF needs 5: robot, link, visual,
+/// geometry, mesh). Checked, with the element count, in one pass before the XML parser,
+/// which recurses once per level.
+constexpr int kMaxUrdfDepth = 100;
+/// The most XML elements in a URDF file: about 11 a link with its joint, so a robot of
+/// 180,000 links.
+constexpr std::uint64_t kMaxUrdfElements = 2000000;
 
 /// Reads and checks a scene file, JSON or URDF (is_urdf(); the URDF's only chain). Throws soa::Error("<file>: <json path>: <problem>"), or
 /// "<file>: <problem>" for the file itself (cannot open it, a directory, a read error, larger

@@ -437,6 +437,24 @@ TEST(urdf, JsonCheckMessagesNameTheLinkOrJoint) {
             path + ": link 'base' name: \"base\" names the ground; pick another");
 }
 
+/// A line break in a name is a character of the name: the scene has the URDF's two bodies,
+/// a message and `soa convert`'s comments show it escaped, and the converted JSON reads back
+/// to the same model.
+TEST(urdf, ALineBreakInANameStaysInTheName) {
+  const std::string path =
+      std::string(SOA_SOURCE_DIR) + "/tests/scenes/urdf/name_with_line_break.urdf";
+  const Scene s = load_scene(path);
+  ASSERT_EQ(s.frames.size(), 2u);
+  EXPECT_EQ(s.frames[1].name, "lower\n// injected");
+  EXPECT_DOUBLE_EQ(s.model.body(1).M.mass(), 0.8);
+  const std::string json = urdf_to_scene_json(path);
+  EXPECT_NE(json.find("// link 'lower\\n// injected' on joint"), std::string::npos);
+  EXPECT_EQ(json.find("\n// injected"), std::string::npos) << "a comment line was split";
+  const std::string dir = temp_dir();
+  fs::copy_file(path, dir + "/name_with_line_break.urdf");
+  expect_convert_round_trip(dir + "/name_with_line_break.urdf");
+}
+
 /// urdfdom's own console output never reaches the user: stderr stays empty on a bad file
 /// (its reason is in our message) and on a good one.
 TEST(urdf, UrdfdomSaysNothing) {
@@ -464,6 +482,28 @@ TEST(urdf, UrdfdomSaysNothing) {
 const std::map<std::string, std::string>& expected_messages() {
   static const std::map<std::string, std::string> table = {
       {"zero_axis", "joint 'j2': axis is zero"},
+      {"mass_not_a_number",
+       "urdfdom could not read all of it: Inertial: mass [1.0x] is not a float; then: Could "
+       "not parse inertial element for Link [upper] (it would go on without what it could not "
+       "read)"},
+      {"inertia_not_a_number",
+       "urdfdom could not read all of it: Inertial: inertia element ixx is not a valid double; "
+       "then: Could not parse inertial element for Link [upper] (it would go on without what "
+       "it could not read)"},
+      {"joint_cycle",
+       "joints 'b_to_a', 'a_to_b' form a cycle through link 'a': the links of a URDF form a "
+       "tree"},
+      {"own_parent",
+       "joint 'c_on_c' makes link 'c' its own parent: the links of a URDF form a tree"},
+      {"two_parents",
+       "link 'lower' is the child of two joints, 'joint_extra' and 'joint_lower': the links of "
+       "a URDF form a tree, each below one joint"},
+      {"name_not_utf8", "robot 'pend\\xffulum': its name is not UTF-8 text"},
+      {"origin_too_far",
+       "joint 'joint_lower' placement.position: 1.7e+308 m from the parent's frame, more than "
+       "the 1e+150 m a placement may have (its products would overflow)"},
+      {"nested_too_deep",
+       "line 4: XML nested more than 100 levels deep, the most a URDF file may be"},
       {"planar",
        "joint 'j1': a planar joint (3 dofs in a plane) has no hinge in the course "
        "(revolute, prismatic, helical, universal, spherical, free); lock it with "

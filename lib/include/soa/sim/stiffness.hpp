@@ -157,7 +157,10 @@ class DominantEigenvalueT {
     for (int i = 0; i < k; ++i)
       if (std::abs(ev[i]) >= 0.99 * largest && (top < 0 || ev[i].real() > ev[top].real())) top = i;
     // The next start: the dominant Ritz vector V_k s, real and imaginary parts summed.
-    const auto s = es_.eigenvectors().col(top);
+    // A vector of its own: eigenvectors() returns a matrix by value, and a column of it (a
+    // block, as `auto` would keep) would outlive it.
+    const Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 0, kMaxSteps, 1> s =
+        es_.eigenvectors().col(top);
     d_.setZero();
     for (int i = 0; i < k; ++i) d_ += S(s[i].real() + s[i].imag()) * V_.col(i);
     const S norm = d_.norm();
