@@ -5,7 +5,9 @@
 // bit.
 //
 // Before urdfdom sees the file, a linear scan bounds its nesting and its element count (the
-// XML parser recurses per level); after, the model is checked as a tree (a joint cycle, a
+// XML parser recurses per level), and a pass over the elements urdfdom reads refuses what it
+// would drop without a word or crash on (an unknown attribute or child, a second <origin>, a
+// '%' in a value, an empty name); after, the model is checked as a tree (a joint cycle, a
 // link that is its own parent) and its names as UTF-8 text, and it is freed link by link (its
 // links own their children: freeing a long chain would recurse once per link).
 //
@@ -13,6 +15,7 @@
 // hinge; the root link and whatever is fixed to it is the ground; the chain is the path from
 // the root to the tip link; links fixed to the chain off that path are merged into the body
 // they hang on, as rigid mass; a link without <inertial> is a massless frame.
+#include <tinyxml.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -28,6 +31,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -502,7 +506,7 @@ class Converter {
                 "course's dynamics have neither."};
     u.header.insert(u.header.end(), header_.begin(), header_.end());
     u.top = json::object();
-    u.top["name"] = model_.getName().empty() ? tip : model_.getName();
+    u.top["name"] = model_.getName();  // not empty: XmlCheck refuses an empty name
     u.top["gravity"] = json::array({0.0, 0.0, -9.81});
     std::string parent = "base";
     for (const Entry& e : entries_) {
@@ -632,6 +636,187 @@ void check_xml_shape(const std::string& path, const std::string& xml) {
     }
   }
 }
+
+/// The elements urdfdom reads, with their attributes and child elements, as the URDF spec
+/// lists them (wiki.ros.org/urdf/XML: robot, link, joint; urdfdom reads <robot version> too).
+/// A child marked '*' may repeat; any other comes at most once, since urdfdom reads the
+/// first and drops the others without a word. In a closed element the spec lists every
+/// child, so another one is a typo; in an open one (the document, robot, link, visual,
+/// collision, material) extensions are common (<gazebo>, <transmission>, <ros2_control>), so
+/// only a near miss of a known child is refused. urdfdom ignores what it does not know, but
+/// for <geometry>'s shape: it reads the first child, whatever its name, and refuses an
+/// unknown one itself.
+struct UrdfElement {
+  std::string_view name, attributes, children;  // separated by spaces
+  bool closed;
+};
+constexpr UrdfElement kUrdfElements[] = {
+    {"", "", "robot", false},  // the document
+    {"robot", "name version", "link* joint* material*", false},
+    {"link", "name", "inertial visual* collision*", false},
+    {"inertial", "", "origin mass inertia", true},
+    {"origin", "xyz rpy", "", true},
+    {"mass", "value", "", true},
+    {"inertia", "ixx ixy ixz iyy iyz izz", "", true},
+    {"visual", "name", "origin geometry material", false},
+    {"collision", "name", "origin geometry", false},
+    {"geometry", "", "box cylinder sphere mesh", false},
+    {"box", "size", "", true},
+    {"cylinder", "radius length", "", true},
+    {"sphere", "radius", "", true},
+    {"mesh", "filename scale", "", true},
+    {"material", "name", "color texture", false},
+    {"color", "rgba", "", true},
+    {"texture", "filename", "", true},
+    {"joint", "name type",
+     "origin parent child axis calibration dynamics limit mimic safety_controller", true},
+    {"parent", "link", "", true},
+    {"child", "link", "", true},
+    {"axis", "xyz", "", true},
+    {"calibration", "rising falling", "", true},
+    {"dynamics", "damping friction", "", true},
+    {"limit", "lower upper effort velocity", "", true},
+    {"mimic", "joint multiplier offset", "", true},
+    {"safety_controller", "soft_lower_limit soft_upper_limit k_position k_velocity", "", true},
+};
+
+std::vector<std::string_view> words(std::string_view s) {
+  std::vector<std::string_view> out;
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t end = std::min(s.find(' ', i), s.size());
+    out.push_back(s.substr(i, end - i));
+    i = end + 1;
+  }
+  return out;
+}
+const UrdfElement* urdf_element(std::string_view name) {
+  for (const UrdfElement& e : kUrdfElements)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+/// The Levenshtein distance of \p a and \p b, or 3 when it is more than 2.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  if ((a.size() > b.size() ? a.size() - b.size() : b.size() - a.size()) > 2) return 3;
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return std::min<std::size_t>(row[b.size()], 3);
+}
+/// "; did you mean X?" for the name of \p known within 2 edits of \p name, else "".
+std::string near_miss(std::string_view name, const std::vector<std::string_view>& known,
+                      const char* open, const char* close) {
+  for (std::string_view k : known) {
+    const std::string_view bare = k.substr(0, k.find('*'));
+    if (edit_distance(name, bare) <= 2)
+      return "; did you mean " + std::string(open) + std::string(bare) + close + "?";
+  }
+  return "";
+}
+std::string listed(const std::vector<std::string_view>& names) {
+  std::string s;
+  for (std::string_view n : names)
+    s += (s.empty() ? "" : ", ") + std::string(n.substr(0, n.find('*')));
+  return s.empty() ? "none" : s;
+}
+/// An attribute value as a message shows it: escaped, and cut after 40 bytes.
+std::string shown(const std::string& value) {
+  return value.size() > 40 ? printable(value.substr(0, 40)) + "..." : printable(value);
+}
+
+/// The elements urdfdom reads, checked before it reads them, in TinyXML's reading (urdfdom's
+/// own XML parser, so the two see the same document; check_xml_shape() has bounded its
+/// depth): each attribute known (kUrdfElements), no '%' in a value (urdfdom passes some
+/// values to printf as the format: it would crash), no empty name, each child known or, in
+/// an open element, not a near miss, and a child that comes once not repeated. A refusal
+/// names the line.
+class XmlCheck {
+ public:
+  explicit XmlCheck(const std::string& path) : path_(path) {}
+
+  void run(const std::string& xml) {
+    TiXmlDocument doc;
+    doc.Parse(xml.c_str());
+    if (doc.Error()) return;  // urdfdom says why
+    element(doc, *urdf_element(""), "");
+  }
+
+ private:
+  [[noreturn]] void fail(const TiXmlNode& at, const std::string& owner,
+                         const std::string& problem) const {
+    throw Error(path_ + ": line " + std::to_string(at.Row()) + ": " +
+                (owner.empty() ? "" : owner + ": ") + problem);
+  }
+
+  /// \p x, the element \p e describes, and what is below it; \p owner names the link or joint
+  /// it is in ("" above them).
+  void element(const TiXmlNode& x, const UrdfElement& e, std::string owner) {
+    if (const TiXmlElement* el = x.ToElement()) {
+      attributes(*el, e, owner);
+      if (e.name == "link" || e.name == "joint")
+        owner =
+            std::string(e.name) + " " + quote(el->Attribute("name") ? el->Attribute("name") : "");
+    }
+    const std::vector<std::string_view> known = words(e.children);
+    std::unordered_map<std::string_view, const TiXmlElement*> first;  // a child that comes once
+    for (const TiXmlElement* c = x.FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string_view name = c->ValueStr();
+      const auto k = std::find_if(known.begin(), known.end(), [&](std::string_view n) {
+        return n.substr(0, n.find('*')) == name;
+      });
+      if (k != known.end()) {
+        if (k->back() != '*') {
+          const auto [it, fresh] = first.emplace(*k, c);
+          if (!fresh)
+            fail(*c, owner,
+                 "a second <" + std::string(name) + "> (the first on line " +
+                     std::to_string(it->second->Row()) + "), which urdfdom would ignore: give one");
+        }
+        element(*c, *urdf_element(name), owner);
+        continue;
+      }
+      if (name.find(':') != std::string_view::npos) continue;  // a namespace's extension
+      const std::string hint = near_miss(name, known, "<", ">");
+      if (e.closed || !hint.empty())
+        fail(*c, owner,
+             "<" + printable(std::string(name)) + ">: not an element of " +
+                 (e.name.empty() ? "the document" : "<" + std::string(e.name) + ">") +
+                 " (URDF: " + listed(known) + "), which urdfdom would ignore" + hint);
+    }
+  }
+
+  void attributes(const TiXmlElement& x, const UrdfElement& e, const std::string& owner) const {
+    const std::vector<std::string_view> known = words(e.attributes);
+    const std::string tag = "<" + std::string(e.name);
+    for (const TiXmlAttribute* a = x.FirstAttribute(); a; a = a->Next()) {
+      const std::string name = a->Name(), value = a->Value();
+      const bool extension = name.find(':') != std::string::npos || name == "xmlns";
+      if (!extension && std::find(known.begin(), known.end(), name) == known.end())
+        fail(x, owner,
+             tag + " " + printable(name) + ">: not an attribute of " + tag + "> (URDF: " +
+                 listed(known) + "), which urdfdom would ignore" + near_miss(name, known, "", ""));
+      if (value.find('%') != std::string::npos)
+        fail(x, owner,
+             tag + " " + printable(name) + "=\"" + shown(value) +
+                 "\">: a '%' in a value, which urdfdom would use as a printf format (and "
+                 "crash): leave it out");
+      const bool names_something =
+          (name == "name" && (e.name == "robot" || e.name == "link" || e.name == "joint")) ||
+          (name == "link" && (e.name == "parent" || e.name == "child"));
+      if (names_something && value.empty())
+        fail(x, owner, tag + " " + name + "=\"\">: an empty name");
+    }
+  }
+
+  const std::string& path_;
+};
 
 /// The model checked as a tree, and its names as text: a link that is its own parent, a link
 /// with two parent joints, a cycle of joints (which urdfdom does not refuse in every shape),
@@ -773,6 +958,7 @@ namespace detail {
 UrdfScene convert_urdf(const std::string& path, const UrdfOptions& options) {
   const std::string xml = read_text(path);
   check_xml_shape(path, xml);
+  XmlCheck(path).run(xml);
   urdf::ModelInterfaceSharedPtr model;
   const FlatRelease release{model};
   std::string said;

@@ -355,17 +355,21 @@ TEST(urdf, FixedSideBranchesAreRigidMass) {
   EXPECT_LE(worst.value(), 256 * eps<double>());
 }
 
+/// An arm of one joint with a hand and two prismatic fingers, written in \p dir.
+std::string gripper(const std::string& dir) {
+  return write(
+      dir, "gripper.urdf",
+      robot(massless("base") + link("l1", 2) + link("hand", 0.7) + link("left", 0.1) +
+            link("right", 0.1) + joint("j1", "revolute", "base", "l1") +
+            joint("wrist", "fixed", "l1", "hand", Vec3<double>(0, 0, 0.3)) +
+            joint("finger_left", "prismatic", "hand", "left", Vec3<double>(0, 0.02, 0.05),
+                  Vec3<double>::Zero(), axis(Vec3<double>::UnitY())) +
+            joint("finger_right", "prismatic", "hand", "right", Vec3<double>(0, -0.02, 0.05),
+                  Vec3<double>::Zero(), axis(-Vec3<double>::UnitY()))));
+}
+
 TEST(urdf, MovingSideBranchIsAnErrorAndLockTakesItIn) {
-  const std::string dir = temp_dir();
-  const std::string path =
-      write(dir, "gripper.urdf",
-            robot(massless("base") + link("l1", 2) + link("hand", 0.7) + link("left", 0.1) +
-                  link("right", 0.1) + joint("j1", "revolute", "base", "l1") +
-                  joint("wrist", "fixed", "l1", "hand", Vec3<double>(0, 0, 0.3)) +
-                  joint("finger_left", "prismatic", "hand", "left", Vec3<double>(0, 0.02, 0.05),
-                        Vec3<double>::Zero(), axis(Vec3<double>::UnitY())) +
-                  joint("finger_right", "prismatic", "hand", "right", Vec3<double>(0, -0.02, 0.05),
-                        Vec3<double>::Zero(), axis(-Vec3<double>::UnitY()))));
+  const std::string path = gripper(temp_dir());
   EXPECT_EQ(error_of([&] { load_scene(path); }),
             path +
                 ": a tree, not a chain: no single path from 'base' passes every moving joint "
@@ -478,6 +482,77 @@ TEST(urdf, UrdfdomSaysNothing) {
   EXPECT_EQ(s.model.n(), 7);
 }
 
+/// urdfdom reads the first of each element that comes once and drops the others without a
+/// word: a second one is refused, naming the joint or link and the element.
+TEST(urdf, ASecondElementIsRefused) {
+  const std::string dir = temp_dir();
+  const std::vector<std::pair<std::string, std::string>> in_joint = {
+      {"origin", "    <origin xyz=\"0 0 1\"/>\n"},
+      {"axis", axis(Vec3<double>::UnitZ()) + axis(Vec3<double>::UnitY())},
+      {"limit",
+       "    <limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>\n"
+       "    <limit lower=\"-2\" upper=\"2\" effort=\"1\" velocity=\"1\"/>\n"},
+      {"dynamics", "    <dynamics damping=\"1\"/>\n    <dynamics damping=\"2\"/>\n"},
+      {"parent", "    <parent link=\"l1\"/>\n"},
+      {"child", "    <child link=\"base\"/>\n"},
+      {"mimic", "    <mimic joint=\"j0\"/>\n    <mimic joint=\"j2\"/>\n"}};
+  for (const auto& [element, extra] : in_joint) {
+    SCOPED_TRACE(element);
+    const std::string path = write(dir, "joint_" + element + ".urdf",
+                                   robot(massless("base") + link("l1", 1) +
+                                         joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(),
+                                               Vec3<double>::Zero(), extra)));
+    const std::string message = error_of([&] { load_scene(path); });
+    EXPECT_NE(message.find(": joint 'j1': a second <" + element + "> (the first on line "),
+              std::string::npos)
+        << message;
+  }
+  const std::string one = link("l1", 1);
+  const std::size_t end_inertial = one.find("    </inertial>"), end_link = one.find("  </link>");
+  const std::string inertial = one.substr(one.find("    <inertial>"));
+  const std::vector<std::pair<std::string, std::string>> in_link = {
+      {"inertial", one.substr(0, end_link) + inertial},
+      {"mass",
+       one.substr(0, end_inertial) + "      <mass value=\"2\"/>\n" + one.substr(end_inertial)},
+      {"inertia",
+       one.substr(0, end_inertial) +
+           "      <inertia ixx=\"1\" iyy=\"1\" izz=\"1\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/>\n" +
+           one.substr(end_inertial)},
+      {"origin",
+       one.substr(0, end_inertial) + "      <origin xyz=\"0 0 1\"/>\n" + one.substr(end_inertial)}};
+  for (const auto& [element, text] : in_link) {
+    SCOPED_TRACE(element);
+    const std::string path =
+        write(dir, "link_" + element + ".urdf",
+              robot(massless("base") + text + joint("j1", "revolute", "base", "l1")));
+    const std::string message = error_of([&] { load_scene(path); });
+    EXPECT_NE(message.find(": link 'l1': a second <" + element + "> (the first on line "),
+              std::string::npos)
+        << message;
+  }
+}
+
+/// What real URDF files carry beyond the spec loads: extension elements under <robot> and
+/// <link> (their contents unread, a '%' in them too), and elements and attributes of a
+/// namespace (xacro's, Drake's), in a joint as well.
+TEST(urdf, ExtensionsLoad) {
+  const std::string dir = temp_dir();
+  std::string text =
+      robot(massless("base") + link("l1", 1) +
+            joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
+                  "    <drake:rotor_inertia value=\"0.1\"/>\n") +
+            "  <gazebo reference=\"l1\"><material>Gazebo/Grey%20</material>"
+            "<plugin filename=\"lib%s.so\"/></gazebo>\n"
+            "  <transmission name=\"t1\"><type>SimpleTransmission</type><joint name=\"j1\"/>"
+            "</transmission>\n"
+            "  <ros2_control name=\"arm\" type=\"system\"><joint name=\"j1\"/></ros2_control>\n");
+  text.replace(text.find("<robot name=\"test\">"), 19,
+               "<robot name=\"test\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">");
+  text.replace(text.find("    <inertial>"), 0, "    <self_collision_checking/>\n");
+  const std::string path = write(dir, "extensions.urdf", text);
+  EXPECT_EQ(load_scene(path).model.n(), 1);
+}
+
 /// tests/scenes/urdf/bad/NAME.urdf -> the message after "<file>: ".
 const std::map<std::string, std::string>& expected_messages() {
   static const std::map<std::string, std::string> table = {
@@ -530,6 +605,38 @@ const std::map<std::string, std::string>& expected_messages() {
        "a tree, not a chain: no single path from 'base' passes every moving joint (its ends: "
        "'a', 'b'); choose the tip with --tip LINK, and lock the joints off its path with --lock "
        "JOINT"},
+      {"empty_joint_name", "line 12: <joint name=\"\">: an empty name"},
+      {"empty_link_name", "line 5: <link name=\"\">: an empty name"},
+      {"empty_parent_link", "line 13: joint 'j1': <parent link=\"\">: an empty name"},
+      {"empty_robot_name", "line 3: <robot name=\"\">: an empty name"},
+      {"near_miss_in_link",
+       "line 6: link 'l1': <intertial>: not an element of <link> (URDF: inertial, visual, "
+       "collision), which urdfdom would ignore; did you mean <inertial>?"},
+      {"near_miss_in_robot",
+       "line 12: <jiont>: not an element of <robot> (URDF: link, joint, material), which urdfdom "
+       "would ignore; did you mean <joint>?"},
+      {"percent_in_name",
+       "line 5: <link name=\"a%s\">: a '%' in a value, which urdfdom would use as a printf format "
+       "(and crash): leave it out"},
+      {"percent_in_value",
+       "line 8: link 'l1': <mass value=\"1%s\">: a '%' in a value, which urdfdom would use as a "
+       "printf format (and crash): leave it out"},
+      {"second_limit",
+       "line 18: joint 'j1': a second <limit> (the first on line 17), which urdfdom would ignore: "
+       "give one"},
+      {"second_mass",
+       "line 9: link 'l1': a second <mass> (the first on line 8), which urdfdom would ignore: give "
+       "one"},
+      {"unknown_attribute",
+       "line 17: joint 'j1': <limit lowr>: not an attribute of <limit> (URDF: lower, upper, "
+       "effort, velocity), which urdfdom would ignore; did you mean lower?"},
+      {"unknown_element_in_inertial",
+       "line 9: link 'l1': <density>: not an element of <inertial> (URDF: origin, mass, inertia), "
+       "which urdfdom would ignore"},
+      {"unknown_element_in_joint",
+       "line 15: joint 'j1': <orgin>: not an element of <joint> (URDF: origin, parent, child, "
+       "axis, calibration, dynamics, limit, mimic, safety_controller), which urdfdom would ignore; "
+       "did you mean <origin>?"},
       {"not_urdf",
        "not a valid URDF (urdfdom: Could not find the 'robot' element in the xml "
        "file)"},
