@@ -170,10 +170,17 @@ std::vector<const urdf::Link*> subtree(const urdf::Link& l) {
   return out;
 }
 
+/// What the XML pass found that the model does not keep: the joints whose <limit> leaves out
+/// lower or upper (the URDF spec's default, 0, is taken), by name.
+struct XmlFacts {
+  std::unordered_map<std::string, std::string> limit_default;  // joint -> "lower" or "upper"
+};
+
 class Converter {
  public:
-  Converter(std::string file, const urdf::ModelInterface& model, const UrdfOptions& o)
-      : file_(std::move(file)), model_(model), options_(o) {}
+  Converter(std::string file, const urdf::ModelInterface& model, const XmlFacts& facts,
+            const UrdfOptions& o)
+      : file_(std::move(file)), model_(model), facts_(facts), options_(o) {}
 
   detail::UrdfScene run() {
     for (const std::string& j : options_.lock) {
@@ -473,6 +480,16 @@ class Converter {
       if (e.limits && !e.continuous && !(e.limits->lower <= e.limits->upper))
         fail(where + "limit lower " + brief(e.limits->lower) + " is above upper " +
              brief(e.limits->upper));
+      // The URDF spec's effort and velocity bound magnitudes, |effort| and |velocity|.
+      if (e.limits && e.limits->effort < 0)
+        fail(where + "limit effort " + brief(e.limits->effort) +
+             " is negative: it bounds |effort|");
+      if (e.limits && e.limits->velocity < 0)
+        fail(where + "limit velocity " + brief(e.limits->velocity) +
+             " is negative: it bounds |velocity|");
+      const auto taken = facts_.limit_default.find(joint.name);
+      if (e.limits && !e.continuous && taken != facts_.limit_default.end())
+        e.notes.push_back("limit " + taken->second + ": not given, 0 (the URDF spec's default)");
     }
     if (joint.safety) e.notes.push_back("<safety_controller> not used");
     if (joint.calibration) e.notes.push_back("<calibration> not used");
@@ -553,6 +570,7 @@ class Converter {
 
   std::string file_;
   const urdf::ModelInterface& model_;
+  const XmlFacts& facts_;
   const UrdfOptions& options_;
   std::set<std::string> locked_;
   std::vector<Entry> entries_;
@@ -735,17 +753,18 @@ std::string shown(const std::string& value) {
 /// own XML parser, so the two see the same document; check_xml_shape() has bounded its
 /// depth): each attribute known (kUrdfElements), no '%' in a value (urdfdom passes some
 /// values to printf as the format: it would crash), no empty name, each child known or, in
-/// an open element, not a near miss, and a child that comes once not repeated. A refusal
-/// names the line.
+/// an open element, not a near miss, a child that comes once not repeated, and a revolute or
+/// prismatic joint's <limit> with lower or upper. A refusal names the line.
 class XmlCheck {
  public:
   explicit XmlCheck(const std::string& path) : path_(path) {}
 
-  void run(const std::string& xml) {
+  XmlFacts run(const std::string& xml) {
     TiXmlDocument doc;
     doc.Parse(xml.c_str());
-    if (doc.Error()) return;  // urdfdom says why
+    if (doc.Error()) return {};  // urdfdom says why
     element(doc, *urdf_element(""), "");
+    return std::move(facts_);
   }
 
  private:
@@ -790,6 +809,7 @@ class XmlCheck {
                  (e.name.empty() ? "the document" : "<" + std::string(e.name) + ">") +
                  " (URDF: " + listed(known) + "), which urdfdom would ignore" + hint);
     }
+    if (e.name == "joint") limit(*x.ToElement(), owner);
   }
 
   void attributes(const TiXmlElement& x, const UrdfElement& e, const std::string& owner) const {
@@ -815,7 +835,24 @@ class XmlCheck {
     }
   }
 
+  /// A revolute or prismatic joint's <limit> with neither lower nor upper: the URDF spec then
+  /// means 0 and 0, a joint that cannot move. With one of them, the other is the spec's 0.
+  void limit(const TiXmlElement& joint, const std::string& owner) {
+    const char *type = joint.Attribute("type"), *name = joint.Attribute("name");
+    const TiXmlElement* l = joint.FirstChildElement("limit");
+    if (!type || !name || !l ||
+        (std::strcmp(type, "revolute") != 0 && std::strcmp(type, "prismatic") != 0))
+      return;
+    const bool lower = l->Attribute("lower"), upper = l->Attribute("upper");
+    if (!lower && !upper)
+      fail(*l, owner + " (" + type + ")",
+           "<limit> without lower and upper: the URDF spec then means 0 and 0, a joint that "
+           "cannot move; give them, or make the joint continuous");
+    if (!lower || !upper) facts_.limit_default[name] = lower ? "upper" : "lower";
+  }
+
   const std::string& path_;
+  XmlFacts facts_;
 };
 
 /// The model checked as a tree, and its names as text: a link that is its own parent, a link
@@ -958,7 +995,7 @@ namespace detail {
 UrdfScene convert_urdf(const std::string& path, const UrdfOptions& options) {
   const std::string xml = read_text(path);
   check_xml_shape(path, xml);
-  XmlCheck(path).run(xml);
+  const XmlFacts facts = XmlCheck(path).run(xml);
   urdf::ModelInterfaceSharedPtr model;
   const FlatRelease release{model};
   std::string said;
@@ -975,7 +1012,7 @@ UrdfScene convert_urdf(const std::string& path, const UrdfOptions& options) {
     throw Error(path + ": urdfdom could not read all of it: " + said +
                 " (it would go on without what it could not read)");
   check_tree(path, *model);
-  return Converter(path, *model, options).run();
+  return Converter(path, *model, facts, options).run();
 }
 
 }  // namespace detail

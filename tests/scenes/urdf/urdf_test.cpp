@@ -553,6 +553,24 @@ TEST(urdf, ExtensionsLoad) {
   EXPECT_EQ(load_scene(path).model.n(), 1);
 }
 
+/// A revolute or prismatic joint's <limit> with one of lower and upper: the other is the URDF
+/// spec's default, 0, and `soa convert` says so.
+TEST(urdf, AMissingLimitBoundIsTheSpecsZero) {
+  const std::string dir = temp_dir();
+  const std::string path =
+      write(dir, "upper_only.urdf",
+            robot(massless("base") + link("l1", 1) +
+                  joint("j1", "revolute", "base", "l1", Vec3<double>::Zero(), Vec3<double>::Zero(),
+                        "    <limit upper=\"1.5\" effort=\"10\" velocity=\"2\"/>\n")));
+  const HingeLimits* l = frame(load_scene(path), "l1").limits();
+  ASSERT_TRUE(l);
+  EXPECT_EQ(l->lower, 0.0);
+  EXPECT_EQ(l->upper, 1.5);
+  EXPECT_NE(urdf_to_scene_json(path).find("// limit lower: not given, 0 (the URDF spec's default)"),
+            std::string::npos);
+  expect_convert_round_trip(path);
+}
+
 /// tests/scenes/urdf/bad/NAME.urdf -> the message after "<file>: ".
 const std::map<std::string, std::string>& expected_messages() {
   static const std::map<std::string, std::string> table = {
@@ -609,12 +627,17 @@ const std::map<std::string, std::string>& expected_messages() {
       {"empty_link_name", "line 5: <link name=\"\">: an empty name"},
       {"empty_parent_link", "line 13: joint 'j1': <parent link=\"\">: an empty name"},
       {"empty_robot_name", "line 3: <robot name=\"\">: an empty name"},
+      {"limit_without_lower_and_upper",
+       "line 17: joint 'j1' (revolute): <limit> without lower and upper: the URDF spec then means "
+       "0 and 0, a joint that cannot move; give them, or make the joint continuous"},
       {"near_miss_in_link",
        "line 6: link 'l1': <intertial>: not an element of <link> (URDF: inertial, visual, "
        "collision), which urdfdom would ignore; did you mean <inertial>?"},
       {"near_miss_in_robot",
        "line 12: <jiont>: not an element of <robot> (URDF: link, joint, material), which urdfdom "
        "would ignore; did you mean <joint>?"},
+      {"negative_effort", "joint 'j1': limit effort -10 is negative: it bounds |effort|"},
+      {"negative_velocity", "joint 'j1': limit velocity -2 is negative: it bounds |velocity|"},
       {"percent_in_name",
        "line 5: <link name=\"a%s\">: a '%' in a value, which urdfdom would use as a printf format "
        "(and crash): leave it out"},
