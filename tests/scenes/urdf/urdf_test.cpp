@@ -571,6 +571,54 @@ TEST(urdf, AMissingLimitBoundIsTheSpecsZero) {
   expect_convert_round_trip(path);
 }
 
+/// A joint --lock fixes is said the same way on the chain and off it (beyond the tip, or a
+/// finger on a side branch): "locked at its zero position by --lock".
+TEST(urdf, EveryLockedJointIsSaid) {
+  const std::string panda = urdf_to_scene_json(
+      default_scene("panda.urdf"),
+      UrdfOptions{"panda_link3", {"panda_joint4", "panda_joint5", "panda_joint6", "panda_joint7"}});
+  for (const char* j : {"panda_joint4", "panda_joint5", "panda_joint6", "panda_joint7"})
+    EXPECT_NE(panda.find(std::string("// joint '") + j +
+                         "' (revolute) locked at its zero position by --lock"),
+              std::string::npos)
+        << j;
+  const std::string fingers =
+      urdf_to_scene_json(gripper(temp_dir()), UrdfOptions{"", {"finger_left", "finger_right"}});
+  for (const char* j : {"finger_left", "finger_right"})
+    EXPECT_NE(fingers.find(std::string("// joint '") + j +
+                           "' (prismatic) locked at its zero position by --lock"),
+              std::string::npos)
+        << j;
+}
+
+/// A tree of 20,000 leaves: refused in a short message when they move (the first few, then
+/// how many more), loaded when they are fixed, with a short comment.
+TEST(urdf, TwentyThousandLeavesGiveShortMessages) {
+  const std::string dir = temp_dir();
+  const int n = 20000;
+  for (const std::string type : {"revolute", "fixed"}) {
+    SCOPED_TRACE(type);
+    std::string body = massless("base") + link("hub", 1) + joint("j", "revolute", "base", "hub");
+    for (int i = 0; i < n; ++i) {
+      const std::string leaf = "leaf" + std::to_string(i);
+      body += link(leaf, 0.01) + joint("j" + leaf, type, "hub", leaf);
+    }
+    const std::string path = write(dir, type + ".urdf", robot(body));
+    if (type == "revolute") {
+      const std::string message = error_of([&] { load_scene(path); });
+      EXPECT_LT(message.size(), 500u) << message.substr(0, 500);
+      EXPECT_NE(message.find("and 19994 more"), std::string::npos) << message.substr(0, 500);
+    } else {
+      EXPECT_EQ(load_scene(path).model.n(), 1);
+      const std::string json = urdf_to_scene_json(path);
+      for (std::size_t at = 0, end = 0; at < json.size(); at = end + 1) {
+        end = std::min(json.find('\n', at), json.size());
+        EXPECT_LT(end - at, 500u) << json.substr(at, 500);
+      }
+    }
+  }
+}
+
 /// tests/scenes/urdf/bad/NAME.urdf -> the message after "<file>: ".
 const std::map<std::string, std::string>& expected_messages() {
   static const std::map<std::string, std::string> table = {
