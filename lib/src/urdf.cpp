@@ -751,8 +751,8 @@ std::string shown(const std::string& value) {
 
 /// The elements urdfdom reads, checked before it reads them, in TinyXML's reading (urdfdom's
 /// own XML parser, so the two see the same document; check_xml_shape() has bounded its
-/// depth): each attribute known (kUrdfElements), no '%' in a value (urdfdom passes some
-/// values to printf as the format: it would crash), no empty name, each child known or, in
+/// depth): each attribute known (kUrdfElements), no '%' in a value but a file name (urdfdom
+/// passes some values to printf as the format: it would crash), no empty name, each child known or, in
 /// an open element, not a near miss, a child that comes once not repeated, and a revolute or
 /// prismatic joint's <limit> with lower or upper. A refusal names the line.
 class XmlCheck {
@@ -822,7 +822,9 @@ class XmlCheck {
         fail(x, owner,
              tag + " " + printable(name) + ">: not an attribute of " + tag + "> (URDF: " +
                  listed(known) + "), which urdfdom would ignore" + near_miss(name, known, "", ""));
-      if (value.find('%') != std::string::npos)
+      // A file name (<mesh>, <texture>) is never part of urdfdom's messages, and may be a
+      // URL with escapes (%20).
+      if (name != "filename" && value.find('%') != std::string::npos)
         fail(x, owner,
              tag + " " + printable(name) + "=\"" + shown(value) +
                  "\">: a '%' in a value, which urdfdom would use as a printf format (and "

@@ -533,8 +533,8 @@ TEST(urdf, ASecondElementIsRefused) {
 }
 
 /// What real URDF files carry beyond the spec loads: extension elements under <robot> and
-/// <link> (their contents unread, a '%' in them too), and elements and attributes of a
-/// namespace (xacro's, Drake's), in a joint as well.
+/// <link> (their contents unread, a '%' in them too), elements and attributes of a namespace
+/// (xacro's, Drake's), in a joint as well, and a mesh file name with URL escapes.
 TEST(urdf, ExtensionsLoad) {
   const std::string dir = temp_dir();
   std::string text =
@@ -548,7 +548,9 @@ TEST(urdf, ExtensionsLoad) {
             "  <ros2_control name=\"arm\" type=\"system\"><joint name=\"j1\"/></ros2_control>\n");
   text.replace(text.find("<robot name=\"test\">"), 19,
                "<robot name=\"test\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">");
-  text.replace(text.find("    <inertial>"), 0, "    <self_collision_checking/>\n");
+  text.replace(text.find("    <inertial>"), 0,
+               "    <self_collision_checking/>\n    <visual><geometry><mesh "
+               "filename=\"package://arm/meshes/upper%20arm.stl\"/></geometry></visual>\n");
   const std::string path = write(dir, "extensions.urdf", text);
   EXPECT_EQ(load_scene(path).model.n(), 1);
 }
