@@ -19,8 +19,9 @@ Usage:
   soa inverse-dynamics SCENE.json [--q V,...] [--qd V,...] [--qdd V,...]
   soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...] [--check]
   soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--operational BODY] [--check]
-  soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T] [--max-steps N]
-                       [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
+  soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
+                       [--max-steps N] [--out traj.csv [--every K | --out-dt H]]
+                       [--q V,...] [--qd V,...]
                        [--view DIR [--frames N] [--no-velocity] [--no-force]]
   soa view             SCENE.json --out DIR [--q V,...] [--qd V,...]
                        [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
@@ -133,9 +134,9 @@ std::string exit_help(std::optional<Verb> verb) {
      together): one line on stderr
 )" +
          (sim || view ? std::string("  130, 143, 129  ") + (sim ? "simulate" : "a simulation") +
-                            " stopped by SIGINT (Ctrl-C), SIGTERM or SIGHUP: " +
-                            (sim ? "the rows and the viewer so far are kept\n"
-                                 : "the viewer so far is kept\n")
+                            " stopped by SIGINT (Ctrl-C), SIGTERM or SIGHUP:\n" +
+                            (sim ? "     the rows and the viewer so far are kept\n"
+                                 : "     the viewer so far is kept\n")
                       : "");
 }
 
