@@ -21,10 +21,11 @@ constexpr VerbInfo kVerbs[] = {
     {Verb::ForwardDynamics, "forward-dynamics", "--q, --qd, --tau, --check, --tip, --lock"},
     {Verb::MassMatrix, "mass-matrix", "--q, --inverse, --operational, --check, --tip, --lock"},
     {Verb::Simulate, "simulate",
-     "--q, --qd, --integrator, --dt, --tol, --t-end, --stiffness, --out, --every, --out-dt, "
-     "--view, --frames, --no-velocity, --no-force, --tip, --lock"},
+     "--q, --qd, --integrator, --dt, --tol, --t-end, --max-steps, --stiffness, --out, --every, "
+     "--out-dt, --view, --frames, --no-velocity, --no-force, --tip, --lock"},
     {Verb::View, "view",
-     "--out, --q, --qd, --integrator, --dt, --tol, --t-end, --stiffness, --trajectory, "
+     "--out, --q, --qd, --integrator, --dt, --tol, --t-end, --max-steps, --stiffness, "
+     "--trajectory, "
      "--frames, --no-velocity, --no-force, --tip, --lock"},
     {Verb::Convert, "convert", "--tip, --lock"},
 };
@@ -45,10 +46,11 @@ void check_combinations(const Args& a) {
   if (!a.out) throw UsageError("view: missing --out DIR, the folder to write the viewer to");
   if (a.trajectory) {
     // A trajectory is a run already: the options that start one have nothing to do.
-    for (const char* o : {given("--integrator", bool(a.integrator)), given("--dt", bool(a.dt)),
-                          given("--tol", bool(a.tol)), given("--t-end", bool(a.t_end)),
-                          given("--stiffness", bool(a.stiffness)), given("--q", bool(a.q)),
-                          given("--qd", bool(a.qd))})
+    for (const char* o :
+         {given("--integrator", bool(a.integrator)), given("--dt", bool(a.dt)),
+          given("--tol", bool(a.tol)), given("--t-end", bool(a.t_end)),
+          given("--max-steps", bool(a.max_steps)), given("--stiffness", bool(a.stiffness)),
+          given("--q", bool(a.q)), given("--qd", bool(a.qd))})
       if (o)
         throw UsageError(std::string("view: --trajectory and ") + o +
                          " do not go together (a trajectory file is a run already; " + o +
@@ -135,6 +137,7 @@ Args parse_args(const std::vector<std::string>& argv) {
                                          : option == "--dt"          ? &a.dt
                                          : option == "--tol"         ? &a.tol
                                          : option == "--t-end"       ? &a.t_end
+                                         : option == "--max-steps"   ? &a.max_steps
                                          : option == "--stiffness"   ? &a.stiffness
                                          : option == "--out"         ? &a.out
                                          : option == "--every"       ? &a.every

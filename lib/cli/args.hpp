@@ -38,6 +38,8 @@ struct Args {
   std::optional<std::string> tip, lock;
   /// simulate: --integrator, --dt, --tol, --t-end, --out, --every, --out-dt
   std::optional<std::string> integrator, dt, tol, t_end, out, every, out_dt;
+  /// simulate, view: --max-steps (the step budget)
+  std::optional<std::string> max_steps;
   /// simulate, view: --stiffness stop|warn|off (the monitor of the explicit methods)
   std::optional<std::string> stiffness;
   /// The viewer: simulate --view DIR; view --trajectory FILE; both --frames N
@@ -46,8 +48,9 @@ struct Args {
   bool check = false;    ///< forward-dynamics, mass-matrix --check: the dense checks at any size
   bool no_velocity = false, no_force = false;  ///< view, simulate --view: leave V, f out
 
-  /// view: a run is simulated (--integrator, --dt, --tol or --t-end given).
-  bool simulates() const { return integrator || dt || tol || t_end || stiffness; }
+  /// view: a run is simulated (--integrator, --dt, --tol, --t-end, --stiffness or
+  /// --max-steps given).
+  bool simulates() const { return integrator || dt || tol || t_end || stiffness || max_steps; }
 };
 
 /// True when the verb \p v takes \p option ("--q", "--inverse", ...).

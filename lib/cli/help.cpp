@@ -20,7 +20,8 @@ Usage:
   soa forward-dynamics SCENE.json [--q V,...] [--qd V,...] [--tau V,...] [--check]
   soa mass-matrix      SCENE.json [--q V,...] [--inverse] [--operational BODY] [--check]
   soa simulate         SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
-                       [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
+                       [--max-steps N] [--out traj.csv [--every K | --out-dt H]]
+                       [--q V,...] [--qd V,...]
                        [--view DIR [--frames N] [--no-velocity] [--no-force]]
   soa view             SCENE.json --out DIR [--q V,...] [--qd V,...]
                        [--integrator NAME (--dt H | --tol E) [--t-end T] | --trajectory F.csv]
@@ -132,10 +133,10 @@ std::string exit_help(std::optional<Verb> verb) {
   2  usage error (unknown verb or option, missing scene file, options that do not go
      together): one line on stderr
 )" +
-         (sim || view ? std::string("  130, 143  ") + (sim ? "simulate" : "a simulation") +
-                            " stopped by SIGINT (Ctrl-C) or SIGTERM: " +
-                            (sim ? "the rows and the viewer so far are kept\n"
-                                 : "the viewer so far is kept\n")
+         (sim || view ? std::string("  130, 143, 129  ") + (sim ? "simulate" : "a simulation") +
+                            " stopped by SIGINT (Ctrl-C), SIGTERM or SIGHUP:\n" +
+                            (sim ? "     the rows and the viewer so far are kept\n"
+                                 : "     the viewer so far is kept\n")
                       : "");
 }
 
@@ -259,7 +260,7 @@ of more than 20000 coordinates are refused (the matrix alone would be 3.2 GB).
 const std::string& simulate_help() {
   static const std::string text =
       std::string(
-          R"(Usage: soa simulate SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T]
+          R"(Usage: soa simulate SCENE.json --integrator NAME (--dt H | --tol E) [--t-end T] [--max-steps N]
                     [--stiffness stop|warn|off] [--out traj.csv [--every K | --out-dt H]] [--q V,...] [--qd V,...]
                     [--view DIR [--frames N] [--no-velocity] [--no-force]]
 
@@ -279,7 +280,12 @@ dampers. Integrators (--integrator, rk4 when absent):
   variational        implicit midpoint in (theta, p = M beta), order 2, symplectic, --dt
                      (revolute, prismatic, helical and universal hinges only)
 Fixed steps divide [0, T] evenly. Spherical and free hinges move on the unit quaternions
-(q <- q exp(u), Runge-Kutta-Munthe-Kaas); at most 2^53 fixed steps. --tol below 1.
+(q <- q exp(u), Runge-Kutta-Munthe-Kaas); at most 2^53 fixed steps. --tol below 1 and at
+least 2.2e-14 (100 eps: the rounding of a step's own arithmetic). --max-steps N: the step
+budget (10000000 when absent, as CVODE's mxstep): a run that has taken N steps before T
+stops (exit code 1) with one line giving t, the rows so far kept as for a blow-up.
+dopri5's first step comes from the problem (Hairer, Norsett, Wanner, II.4); a trial step
+that overflows is taken again smaller.
 --out writes one CSV line per step: t, q and qd in file order, the energy and the largest
 |norm(quaternion) - 1| (fields holding a comma, a quote or a line break are quoted as RFC
 4180 says). --every K writes every K-th step instead, --out-dt H the first step at or
@@ -296,9 +302,10 @@ evaluations; beyond the method's stability bound the run stops (exit code 1) wit
 JSON's "stiffness" (warn); off spends nothing on it.
 A run that blows up stops (exit code 1) with the time, the step and the estimated
 stiffness x step; the rows before the blow-up are kept in the --out file and the message
-says so. Ctrl-C (SIGINT) or SIGTERM stops the run at the end of a step: the rows so far
-are kept, the summary on stdout has "interrupted" with the time, a line on stderr says
-so, exit code 130 or 143 (a second Ctrl-C ends the program at once, without the file).
+says so. Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the run at the end of a step: the rows
+so far are kept, the summary on stdout has "interrupted" with the time, a line on stderr
+says so, exit code 130, 143 or 129 (a second one ends the program at once, without the
+file or its temporary). Past the file size limit (ulimit -f): "--out F: File too large".
 --view DIR also writes the run's 3D viewer into the folder DIR (soa view --help): at most
 N frames (--frames N, 400 when absent), with each body's V and f unless --no-velocity,
 --no-force. The folder is checked before the first step (a folder that cannot be used
@@ -315,13 +322,13 @@ const std::string& view_help() {
   static const std::string text =
       std::string(
           R"(Usage: soa view SCENE.json --out DIR [--q V,...] [--qd V,...]
-                [--integrator NAME (--dt H | --tol E) [--t-end T] [--stiffness P]
+                [--integrator NAME (--dt H | --tol E) [--t-end T] [--max-steps N] [--stiffness P]
                  | --trajectory F.csv] [--frames N] [--no-velocity] [--no-force]
 
 Writes the 3D viewer of the chain into the folder DIR: open DIR/index.html in a browser
 (from file://: nothing is loaded from the network). What it shows:
   the state      the scene's, or --q, --qd: one frame
-  a simulation   --integrator, --dt or --tol, --t-end, --stiffness, as soa simulate takes
+  a simulation   --integrator, --dt or --tol, --t-end, --max-steps, --stiffness, as soa simulate takes
                  them (soa simulate --help), recorded as it runs
   a trajectory   --trajectory F.csv, written by soa simulate --out for this scene
 A run is shown as at most N frames (--frames N, 400 when absent, 2 to 100000): the first
@@ -330,7 +337,8 @@ note says how many states became how many frames. Every number the page shows co
 the library: per frame each body's pose, its spatial velocity V (--no-velocity leaves it
 out) and the inter-body force f(k) at its hinge (--no-force), the energy, the tip.
 The folder is created; an existing one is used only when it holds nothing but a viewer's
-files (nothing of yours is replaced); the files appear when all are complete. A
+files (nothing of yours is replaced); the files appear when all are complete; two
+writers of one folder take turns (a lock on the folder), leaving one's viewer. A
 simulation checks the folder before the first step (a folder that cannot be used stops
 the command before the run) and writes it when the run ends, blown up or interrupted
 included (the messages say so).

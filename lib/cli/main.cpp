@@ -1,15 +1,18 @@
 // `soa`: serial-chain computations on a scene file, JSON on stdout. This file dispatches:
 // command line (args.cpp), scene (soa_scene), state, verb (verbs.cpp), output (json_out.cpp).
-// Exit codes: 0 ok, 1 bad scene or input, 2 usage error (help.cpp), 130/143 a simulation
-// stopped by SIGINT/SIGTERM. Results are computed, then checked (every number finite), then
+// Exit codes: 0 ok, 1 bad scene or input, 2 usage error (help.cpp), 130/143/129 a simulation
+// stopped by SIGINT/SIGTERM/SIGHUP. Results are computed, then checked (every number finite), then
 // written; every write is checked.
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <limits>
 #include <new>
 #include <string>
 #include <vector>
@@ -94,6 +97,23 @@ SimulationOptions simulation_options(const Args& a) {
   if (a.tol && !(o.tol > 0)) throw Error("--tol: the tolerance must be > 0");
   if (a.tol && !(o.tol < 1))
     throw Error("--tol: a relative tolerance must be below 1 (got " + *a.tol + ")");
+  // A step's own arithmetic rounds each component by about eps = 2^-52 relative, and its
+  // error estimate, a difference of stage sums, carries rounding of a few eps: a tolerance
+  // below 100 eps is under the rounding the control measures (RADAU5 refuses rtol <= 10
+  // uround, Hairer and Wanner, Solving ODEs II, IV.8).
+  constexpr double kMinTol = 100 * std::numeric_limits<double>::epsilon();
+  if (a.tol && o.tol < kMinTol)
+    throw Error("--tol: " + *a.tol + " is below " + brief(kMinTol) +
+                " = 100 eps (eps = 2.2e-16, the spacing of doubles at 1): the rounding of a "
+                "step's own arithmetic is of that order, and no error control meets a "
+                "tolerance under it");
+  o.max_steps = kDefaultMaxSteps;
+  if (a.max_steps) {
+    const double k = number_of(a.max_steps, "--max-steps", 0);
+    if (!(k >= 1 && k == std::floor(k) && k <= 1e15))
+      throw Error("--max-steps: expected a whole number of steps >= 1, got " + *a.max_steps);
+    o.max_steps = long(k);
+  }
   if (!(o.t_end >= 0)) throw Error("--t-end: the end time must be >= 0");
   if (a.stiffness) {
     const std::string& p = *a.stiffness;
@@ -109,6 +129,7 @@ SimulationOptions simulation_options(const Args& a) {
 /// --out, --every, --out-dt of simulate.
 OutputOptions output_options(const Args& a) {
   OutputOptions o;
+  if (a.out && a.out->empty()) throw Error("--out: an empty file name");
   if (a.out) o.csv_path = *a.out;
   if (a.every && a.out_dt) throw Error("--every, --out-dt: give one of them, not both");
   if ((a.every || a.out_dt) && !a.out)
@@ -148,6 +169,22 @@ ViewOptions view_options(const Args& a) {
   o.quantities.velocity = !a.no_velocity;
   o.quantities.force = !a.no_force;
   return o;
+}
+
+/// Refuses --out FILE and --view DIR that are the same path, or FILE inside DIR (the
+/// folder is to hold nothing but the viewer's files), before the run.
+void check_apart(const std::string& csv, const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path f = fs::weakly_canonical(fs::absolute(csv, ec), ec);
+  const fs::path d = fs::weakly_canonical(fs::absolute(dir, ec), ec);
+  if (ec) return;  // the run's own checks name the path that cannot be used
+  if (f == d || same_file(csv, dir))
+    throw Error("--out " + csv + ", --view " + dir +
+                ": the same path; the trajectory file and the viewer folder need two");
+  if (f.parent_path() == d)
+    throw Error("--out " + csv + ": is in the viewer folder --view " + dir +
+                ", which holds nothing but the viewer's files; give a path outside it");
 }
 
 /// "a,b,c" as names (--lock).
@@ -252,7 +289,9 @@ Result run(const Args& a) {
       case Verb::Simulate:
         if (a.view) {
           const ViewOptions v = view_options(a);
-          r = simulate(s, x, simulation_options(a), output_options(a), &v);
+          const OutputOptions o = output_options(a);
+          if (!o.csv_path.empty()) check_apart(o.csv_path, v.dir);
+          r = simulate(s, x, simulation_options(a), o, &v);
         } else {
           r = simulate(s, x, simulation_options(a), output_options(a));
         }
@@ -293,6 +332,9 @@ Result run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past the file size limit (ulimit -f) a write fails with EFBIG and is reported, naming
+  // the file, instead of the signal ending the program without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
   Args a;
   try {
     a = parse_args(std::vector<std::string>(argv + 1, argv + argc));

@@ -11,6 +11,33 @@
 #include <vector>
 
 namespace soa::cli {
+namespace {
+
+// The temporary files of the OutputFiles alive, as fixed buffers a signal handler can read:
+// a slot is in use while its first byte is not 0.
+constexpr int kTemporaries = 8;
+char g_temporary[kTemporaries][4096];
+
+int hold_temporary(const std::string& path) {
+  if (path.size() >= sizeof g_temporary[0]) return -1;
+  for (int i = 0; i < kTemporaries; ++i)
+    if (g_temporary[i][0] == '\0') {
+      std::memcpy(g_temporary[i], path.c_str(), path.size() + 1);
+      return i;
+    }
+  return -1;
+}
+
+void release_temporary(int slot) {
+  if (slot >= 0) g_temporary[slot][0] = '\0';
+}
+
+}  // namespace
+
+void remove_temporaries() noexcept {
+  for (int i = 0; i < kTemporaries; ++i)
+    if (g_temporary[i][0] != '\0') ::unlink(g_temporary[i]);
+}
 
 void FdSink::write(const char* data, std::size_t n) {
   if (errno_) return;
@@ -74,6 +101,7 @@ OutputFile::OutputFile(const std::string& path, const std::string& label,
     fd_ = ::mkstemp(name.data());
     if (fd_ < 0) fail(std::string("cannot create a file there (") + std::strerror(errno) + ")");
     tmp_ = name.data();
+    slot_ = hold_temporary(tmp_);
     const mode_t mask = ::umask(0);  // the mode a new file would get: 0666 less the umask
     ::umask(mask);
     ::fchmod(fd_, 0666 & ~mask);
@@ -84,6 +112,7 @@ OutputFile::OutputFile(const std::string& path, const std::string& label,
 OutputFile::~OutputFile() {
   if (fd_ >= 0) ::close(fd_);
   if (!committed_ && !tmp_.empty()) ::unlink(tmp_.c_str());
+  release_temporary(slot_);
 }
 
 void OutputFile::commit() {
@@ -98,6 +127,8 @@ void OutputFile::commit() {
   if (::close(fd) != 0) fail(errno);
   if (!direct_ && ::rename(tmp_.c_str(), path_.c_str()) != 0) fail(errno);
   committed_ = true;
+  release_temporary(slot_);
+  slot_ = -1;
 }
 
 }  // namespace soa::cli

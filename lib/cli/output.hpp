@@ -68,9 +68,14 @@ class OutputFile {
  private:
   std::string path_, tmp_;
   int fd_ = -1;
+  int slot_ = -1;  // of the temporary in remove_temporaries()
   FdSink sink_;
   bool direct_ = false, committed_ = false;
 };
+
+/// Removes the temporary files of the OutputFiles not committed yet, by unlink(2) alone:
+/// safe in a signal handler (a second Ctrl-C ends the program at once, leaving none).
+void remove_temporaries() noexcept;
 
 /// True when \p a and \p b exist and are the same file (device and inode).
 bool same_file(const std::string& a, const std::string& b);

@@ -86,6 +86,10 @@ void per_body_and_file_order(JsonWriter& w, const Scene& scene, const char* per_
 
 }  // namespace
 
+const char* signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
+
 const std::string& stage() {
   return stage_text();
 }
@@ -264,12 +268,22 @@ Emit forward_dynamics(const Scene& scene, const State& x, const VecX<double>& ta
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
+/// The first stop signal asks the run to stop at a step boundary; a second one ends the
+/// program at once, by that signal, once the temporary output files are removed.
 void on_stop_signal(int s) {
+  if (g_signal != 0) {
+    remove_temporaries();
+    ::signal(s, SIG_DFL);
+    ::raise(s);  // delivered when the handler returns
+    return;
+  }
   g_signal = s;
 }
 
-/// SIGINT and SIGTERM set g_signal while a simulation runs; a second one ends the program
-/// at once (SA_RESETHAND).
+/// The signals that stop a simulation: SIGINT (Ctrl-C), SIGTERM, and SIGHUP (the terminal
+/// closed), which set g_signal while it runs.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
+
 class StopSignals {
  public:
   StopSignals() {
@@ -277,18 +291,17 @@ class StopSignals {
     struct sigaction sa {};
     sa.sa_handler = on_stop_signal;
     sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &sa, &old_int_);
-    sigaction(SIGTERM, &sa, &old_term_);
+    sa.sa_flags = 0;
+    for (std::size_t i = 0; i < std::size(kStopSignals); ++i)
+      sigaction(kStopSignals[i], &sa, &old_[i]);
   }
   ~StopSignals() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
+    for (std::size_t i = 0; i < std::size(kStopSignals); ++i)
+      sigaction(kStopSignals[i], &old_[i], nullptr);
   }
 
  private:
-  struct sigaction old_int_ {
-  }, old_term_{};
+  struct sigaction old_[std::size(kStopSignals)]{};
 };
 
 }  // namespace
@@ -374,7 +387,13 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
       bool due = out.out_dt > 0 ? t >= next_out - 1e-9 * out.out_dt : step % out.every == 0;
       if (due) {
         write_row(t, s);
-        if (out.out_dt > 0) next_out = (std::floor(t / out.out_dt + 1e-9) + 1) * out.out_dt;
+        if (out.out_dt > 0) {
+          // The next multiple of out_dt after t. Beyond 2^53 intervals (t / out_dt inexact
+          // or infinite) the multiples are closer together than the doubles near t: every
+          // step is due.
+          const double k = t / out.out_dt;
+          next_out = k < kMaxSteps ? (std::floor(k + 1e-9) + 1) * out.out_dt : t;
+        }
       }
     }
     if (tty) {
@@ -391,17 +410,10 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
   auto clear_bar = [&] {
     if (drew) std::fprintf(stderr, "\r%70s\r", "");
   };
-  SimulationSummary sum;
-  try {
-    sum = soa::simulate(sys, x, opt, observe);
-  } catch (const FileError&) {  // an output, the viewer's folder
-    clear_bar();
-    throw;
-  } catch (const Error& e) {
-    // A blow-up (or a singular D(k)) part way: the rows before it are kept, complete, and
-    // the viewer of them written; x is the last accepted state.
-    clear_bar();
-    if ((!file && !recorder) || step < 0) throw;
+  // A run stopped before its end (a blow-up, the step budget): the rows so far are kept,
+  // complete, and the viewer of them written; x is the last accepted state. The error to
+  // throw: \p what and where the kept rows and viewer are.
+  auto stopped = [&](const std::string& what, const std::string& why) {
     std::string kept;
     if (file) {
       if (written_t != last_t) write_row(last_t, x);
@@ -410,21 +422,42 @@ Result simulate(const Scene& scene, const State& x0, const SimulationOptions& op
              " rows) is in " + out.csv_path;
     }
     if (recorder) {
-      write_viewer(last_t, x, "stopped by a blow-up after t = " + num(last_t) + " s");
+      write_viewer(last_t, x, why);
       const std::string frames = " (" + std::to_string(written->frames) + " frames)";
       kept += file
                   ? ", its viewer" + frames + " in " + view->dir
                   : "; the viewer up to t = " + num(last_t) + " s" + frames + " is in " + view->dir;
     }
-    throw Error(std::string(e.what()) + kept);
+    return Error(what + kept);
+  };
+  SimulationSummary sum;
+  try {
+    sum = soa::simulate(sys, x, opt, observe);
+  } catch (const FileError&) {  // an output, the viewer's folder
+    clear_bar();
+    throw;
+  } catch (const Error& e) {
+    // A blow-up (or a singular D(k)) part way.
+    clear_bar();
+    if ((!file && !recorder) || step < 0) throw;
+    throw stopped(e.what(), "stopped by a blow-up after t = " + num(last_t) + " s");
   }
   clear_bar();
+  if (sum.budget_spent) {
+    const std::string budget = "--max-steps " + std::to_string(opt.max_steps);
+    const std::string what = std::string("simulate (") + integrator_name(opt.method) +
+                             "): the step budget (" + budget + ") is spent at step " +
+                             std::to_string(sum.steps) + ", t = " + num(sum.t) + " s of [0, " +
+                             num(opt.t_end) + "]";
+    if (!file && !recorder) throw Error(what);
+    throw stopped(what, "stopped by the step budget (" + budget + ") at t = " + num(sum.t) + " s");
+  }
   if (file) {
     if (written_t != sum.t) write_row(sum.t, x);
     file->commit();
   }
   const int sig = sum.interrupted ? int(g_signal) : 0;
-  const char* sig_name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+  const char* sig_name = signal_name(sig);
   if (recorder)
     write_viewer(sum.t, x,
                  sum.interrupted ? std::string("interrupted by ") + sig_name +

@@ -84,10 +84,11 @@ struct OutputOptions {
 /// Integrates the scene's motion from \p x (simulate): the trajectory as CSV into
 /// out.csv_path, the summary as JSON; with \p view, the run recorded into that viewer
 /// (its folder checked once the run's options are, so that one that cannot be written stops
-/// the command before the run; written with the run's frames at the end). SIGINT and SIGTERM stop the run at a step boundary: the rows and the viewer so
-/// far are kept, the summary says so, exit code 130 or 143. A run that blows up keeps the
-/// rows and the viewer before the blow-up and its message says where they are. \p verb
-/// begins the note of an interruption.
+/// the command before the run; written with the run's frames at the end). SIGINT, SIGTERM
+/// and SIGHUP stop the run at a step boundary: the rows and the viewer so far are kept, the
+/// summary says so, exit code 130, 143 or 129. A run that blows up, or spends its step
+/// budget (opt.max_steps) before opt.t_end, keeps the rows and the viewer before that and
+/// its message says where they are. \p verb begins the note of an interruption.
 Result simulate(const Scene& scene, const State& x, const SimulationOptions& opt,
                 const OutputOptions& out, const ViewOptions* view = nullptr,
                 const char* verb = "simulate");
@@ -122,6 +123,12 @@ void emit_view(JsonWriter& w, const ViewWritten& v);
 /// (lesson 7, section 8), with (as for the checks above) its difference from the dense form.
 Emit mass_matrix(const Scene& scene, const State& x, bool inverse, bool check,
                  const Scene::Frame* operational = nullptr);
+
+/// "SIGINT", "SIGTERM" or "SIGHUP": the signals that stop a simulation.
+const char* signal_name(int sig);
+
+/// The default of simulate --max-steps: the most steps a run takes.
+inline constexpr long kDefaultMaxSteps = 10000000;
 
 /// What the program is building, for an out-of-memory message ("the mass matrix (n_v =
 /// 100000)").

@@ -65,7 +65,7 @@ Result view(const Scene& scene, const State& x, bool given_state, const ViewOpti
     const std::shared_ptr<const ViewWritten> written = r.view;
     const std::shared_ptr<const SimulationSummary> sum = r.summary;
     const double t_end = sim->t_end;
-    const char* signal = r.exit_code == 128 + SIGINT ? "SIGINT" : "SIGTERM";
+    const char* signal = signal_name(r.exit_code - 128);
     r.emit = [&scene, written, sum, t_end, signal](JsonWriter& w) {
       w.begin_object();
       w.member("scene", scene.title);

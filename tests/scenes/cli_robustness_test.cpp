@@ -87,6 +87,7 @@ struct Outcome {
 struct Options {
   std::string stdout_path;   ///< where stdout goes (a temporary file when empty)
   rlim_t address_space = 0;  ///< RLIMIT_AS for the child, when non-zero
+  rlim_t file_size = 0;      ///< RLIMIT_FSIZE (ulimit -f) for the child, when non-zero
 };
 
 /// Starts soa with \p args; stdout and stderr go to files in \p s.
@@ -102,6 +103,10 @@ pid_t start(const Scratch& s, const std::vector<std::string>& args, const Option
     if (o.address_space) {
       const rlimit l{o.address_space, o.address_space};
       ::setrlimit(RLIMIT_AS, &l);
+    }
+    if (o.file_size) {
+      const rlimit l{o.file_size, o.file_size};
+      ::setrlimit(RLIMIT_FSIZE, &l);
     }
     std::vector<char*> argv{const_cast<char*>(SOA_CLI)};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -278,9 +283,10 @@ TEST(cli_robustness, ACompleteRunReplacesTheFileAndLeavesNoTemporaryFile) {
   EXPECT_NE(st.st_mode & 0044, 0u) << "a new trajectory file is readable as any new file";
 }
 
-// Ctrl-C or SIGTERM part way: complete rows renamed to the target, the summary, 130/143.
+// Ctrl-C, SIGTERM or SIGHUP part way: complete rows renamed to the target, the summary,
+// 130/143/129.
 TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
-  for (const int sig : {SIGINT, SIGTERM}) {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
     Scratch s;
     const std::string csv = s / "traj.csv";
     // With --view for SIGINT: the viewer of the run so far is written too.
@@ -302,7 +308,7 @@ TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
     const Outcome r = wait_for(s, pid);
     EXPECT_EQ(r.rc, 128 + sig) << r.err;
     expect_one_line(r);
-    const std::string name = sig == SIGINT ? "SIGINT" : "SIGTERM";
+    const std::string name = sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
     EXPECT_NE(r.err.find("simulate: interrupted by " + name + " at t = "), std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("the trajectory up to there is in " + csv), std::string::npos) << r.err;
@@ -325,6 +331,81 @@ TEST(cli_robustness, SignalsStopAtAStepBoundaryAndKeepTheRows) {
       EXPECT_NEAR(v["runs"][0]["t"].back().get<double>(), t, 1e-8 * t);
       EXPECT_EQ(j["view"]["frames"].get<std::size_t>(), v["runs"][0]["t"].size());
     }
+  }
+}
+
+// Past the file size limit (ulimit -f) the write fails with EFBIG: one line naming the
+// file, exit code 1, no temporary file left (not a silent death by SIGXFSZ).
+TEST(cli_robustness, AFileSizeLimitIsAnErrorNamingTheFile) {
+  Scratch s;
+  const std::string csv = s / "t.csv";
+  Options o;
+  o.file_size = 50 * 1024;
+  o.stdout_path = "/dev/null";
+  const Outcome r = soa(s,
+                        {"simulate", scene_path("double_pendulum.json"), "--dt", "1e-5", "--t-end",
+                         "10", "--out", csv},
+                        o);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_EQ(r.err, "--out " + csv + ": File too large\n");
+  std::vector<std::string> files = s.files();
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"stderr.txt"}));
+}
+
+// --out-dt below every step: each step is the first at or after a multiple of it, so every
+// step is written (t / out_dt overflowed to 3 rows).
+TEST(cli_robustness, AnOutDtBelowTheStepWritesEveryStep) {
+  Scratch s;
+  const std::string csv = s / "t.csv";
+  for (const char* out_dt : {"5e-324", "1e-300"}) {
+    const Outcome r = soa(s, {"simulate", scene_path("double_pendulum.json"), "--dt", "0.01",
+                              "--t-end", "0.1", "--out", csv, "--out-dt", out_dt});
+    ASSERT_EQ(r.rc, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["rows"].get<long>(), j["steps"].get<long>() + 1) << out_dt;
+    expect_complete_rows(csv, 11);
+  }
+}
+
+// Two views written into one folder at once: both succeed (writers take turns) and the
+// folder holds the complete viewer of one of them, its data.js that run's.
+TEST(cli_robustness, TwoViewsIntoOneFolderAtOnceLeaveOneCompleteViewer) {
+  Scratch s;
+  const std::string scene = scene_path("chain50.json");
+  auto args = [&](const std::string& dir, const char* t_end) {
+    return std::vector<std::string>{"view", scene,     "--out", dir,        "--dt",
+                                    "1e-3", "--t-end", t_end,   "--frames", "2000"};
+  };
+  ASSERT_EQ(soa(s, args(s / "a", "0.5")).rc, 0);
+  ASSERT_EQ(soa(s, args(s / "b", "0.6")).rc, 0);
+  const std::string data_a = read_file(s / "a/data.js"), data_b = read_file(s / "b/data.js");
+  ASSERT_NE(data_a, data_b);
+  for (int round = 0; round < 4; ++round) {
+    const std::string dir = s / ("both" + std::to_string(round));
+    Options o1, o2;
+    o1.stdout_path = o2.stdout_path = "/dev/null";
+    const pid_t p1 = start(s, args(dir, "0.5"), o1);
+    const pid_t p2 = start(s, args(dir, "0.6"), o2);
+    const Outcome r1 = wait_for(s, p1, o1), r2 = wait_for(s, p2, o2);
+    EXPECT_EQ(r1.rc, 0) << r1.err;
+    EXPECT_EQ(r2.rc, 0) << r2.err;
+    const std::string data = read_file(dir + "/data.js");
+    EXPECT_TRUE(data == data_a || data == data_b) << "round " << round << ": data.js of neither";
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      names.push_back(name);
+      if (name != "data.js") {
+        EXPECT_EQ(read_file(e.path().string()), read_file(s / ("a/" + name))) << name;
+      }
+    }
+    std::vector<std::string> expected;
+    for (const auto& e : fs::directory_iterator(s / "a"))
+      expected.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(names, expected) << "round " << round;
   }
 }
 

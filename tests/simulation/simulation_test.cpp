@@ -31,6 +31,7 @@
 #include "fit.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
+#include "soa/scene.hpp"
 #include "soa/soa.hpp"
 
 namespace {
@@ -731,3 +732,49 @@ TEST(simulation_Esdirk, NewtonFailureShrinksTheStep) {
 }
 
 }  // namespace
+
+// dopri5's first step comes from the problem (Hairer, Norsett, Wanner, Solving ODEs I,
+// II.4), not from the horizon: on the double pendulum over [0, 1e6] the first trial step is
+// that of the starting-step algorithm, far below t_end / 1000, and is accepted.
+TEST(simulation_Dopri5, TheFirstStepComesFromTheProblemNotTheHorizon) {
+  const soa::Scene sc = soa::load_scene(std::string(SOA_SCENE_DIR) + "/double_pendulum.json");
+  soa::ChainSystem sys(sc.model, sc.f_ext);
+  soa::StepperT<double> stepper(sys);
+  const double h0 = soa::starting_step(stepper, sc.model.nv(), 0.0, sc.state, 1e-8,
+                                       soa::embedded_order(Integrator::DormandPrince));
+  EXPECT_GT(h0, 1e-8);
+  EXPECT_LT(h0, 0.1);
+  soa::SimulationOptions opt;
+  opt.method = Integrator::DormandPrince;
+  opt.tol = 1e-8;
+  opt.t_end = 1e6;
+  opt.max_steps = 50;
+  State x = sc.state;
+  std::vector<double> t;
+  const soa::SimulationSummary sum =
+      soa::simulate(sys, x, opt, [&](double ti, const State&) { t.push_back(ti); });
+  ASSERT_GE(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t[1], h0) << "the first step is the starting step, accepted";
+  EXPECT_TRUE(sum.budget_spent);
+  EXPECT_EQ(sum.steps, 50);
+  EXPECT_FALSE(sum.interrupted);
+}
+
+// A trial step whose error estimate is not finite (here a first step of 1e3 s, which
+// overflows) is rejected and taken again smaller, never reported as a blow-up.
+TEST(simulation_Dopri5, ANonFiniteTrialStepIsRetriedSmaller) {
+  const soa::Scene sc = soa::load_scene(std::string(SOA_SCENE_DIR) + "/double_pendulum.json");
+  soa::ChainSystem sys(sc.model, sc.f_ext);
+  soa::SimulationOptions opt;
+  opt.method = Integrator::DormandPrince;
+  opt.tol = 1e-8;
+  opt.dt = 1e3;  // the first trial step
+  opt.t_end = 1e6;
+  opt.max_steps = 20;
+  State x = sc.state;
+  soa::SimulationSummary sum;
+  ASSERT_NO_THROW(sum = soa::simulate(sys, x, opt, [](double, const State&) {}));
+  EXPECT_GE(sum.rejected, 1);
+  EXPECT_EQ(sum.steps, 20);
+  EXPECT_TRUE(x.beta.allFinite());
+}

@@ -1,8 +1,12 @@
 // The viewer's folder: the page, three.js and data.js written so that nothing is lost on bad
 // input (a project rule): everything that can be refused is refused before the folder is
 // touched; a folder is reused only when it holds nothing but a viewer's files; each file is
-// written beside its place and renamed into it only when all six are complete.
+// written beside its place and renamed into it only when all six are complete; writers of
+// the same folder take turns (an exclusive flock(2) on the folder), so that the folder holds
+// the six files of one of them.
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -133,6 +137,41 @@ class TempFile : public detail::Sink {
   int fd_ = -1;
 };
 
+/// An exclusive lock on a folder (flock(2) on the folder itself, nothing written in it),
+/// held until destroyed. Taken on the folder that is at \p dir when it is granted: one
+/// removed or replaced while this writer waited is not the one written to.
+class FolderLock {
+ public:
+  explicit FolderLock(const fs::path& dir) {
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (fd_ < 0)
+        throw Error(dir.string() + ": cannot open the folder (" + system_error(errno) + ")");
+      int r;
+      while ((r = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
+      }
+      if (r != 0)
+        throw Error(dir.string() + ": cannot lock the folder (" + system_error(errno) + ")");
+      struct stat held, now;
+      if (::fstat(fd_, &held) == 0 && ::stat(dir.c_str(), &now) == 0 && held.st_dev == now.st_dev &&
+          held.st_ino == now.st_ino)
+        return;
+      ::close(fd_);
+      fd_ = -1;
+      create_folder(dir);  // removed by the writer that held the lock (its write failed)
+    }
+    throw Error(dir.string() + ": the folder keeps being replaced; cannot lock it");
+  }
+  ~FolderLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 /// Removes the temporaries, and the folders write() created, unless the write completed.
 struct Cleanup {
   std::vector<std::pair<fs::path, fs::path>> temporaries;  // (temporary, its place)
@@ -170,8 +209,11 @@ void write(const View& view, const fs::path& dir) {
   const std::string orbit = read_three(three / "examples" / "js" / "controls" / "OrbitControls.js");
   check_folder(dir);
 
+  std::vector<fs::path> created = create_folder(dir);
+  const FolderLock lock(dir);  // released after the cleanup below
+  check_folder(dir);           // as another writer or the user left it
   Cleanup cleanup;
-  cleanup.folders = create_folder(dir);
+  cleanup.folders = std::move(created);
   auto put = [&](const std::string& name, const char* data, std::size_t n) {
     TempFile f(dir, name);
     cleanup.temporaries.emplace_back(f.temp(), f.target());

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "soa/sim/integrators.hpp"
@@ -67,6 +68,10 @@ struct SimulationOptionsT {
   /// symmetric, makes its energy error drift (at most 1.4 J over the run in one piece; split,
   /// 4.5 J in its first half and 6.8 J in its second).
   S max_turn = S(0.5);
+  /// The most steps the run takes (accepted steps; 0: no limit): the run stops there with
+  /// SimulationSummary::budget_spent, the state the last step's, as CVODE's mxstep bounds
+  /// its steps (Hindmarsh et al., SUNDIALS, ACM TOMS 31(3), 2005).
+  long max_steps = 0;
 };
 
 /// The most pieces a variational step is split into (SimulationOptionsT::max_turn).
@@ -105,6 +110,7 @@ struct SimulationSummary {
   double max_energy_drift = 0;  ///< max |E(t) - E(0)| over the steps
   double t = 0;                 ///< the time reached (t_end unless interrupted)
   bool interrupted = false;     ///< stopped by SimulationOptionsT::stop before t_end
+  bool budget_spent = false;    ///< stopped by SimulationOptionsT::max_steps before t_end
   long stiffness_checks = 0;    ///< checks of the stiffness monitor
   double max_h_lambda = 0;      ///< the largest \f$h|\lambda|\f$ it found
   /// variational: steps taken in pieces (SimulationOptionsT::max_turn), and the most pieces
@@ -114,6 +120,56 @@ struct SimulationSummary {
   /// StiffnessPolicy::Warn: what the first check beyond the bound found, else empty.
   std::string stiffness_warning;
 };
+
+/// Rejected trial steps in a row whose error estimate or state is not finite (an overflow)
+/// before the run is reported as blown up, and the factor each one shrinks the step by: the
+/// values CVODE gives a recoverable failure of the right-hand side (MXNCF = 10, ETACF =
+/// 0.25; Hindmarsh et al., SUNDIALS, ACM TOMS 31(3), 2005).
+inline constexpr int kNonFiniteRetries = 10;
+inline constexpr double kNonFiniteShrink = 0.25;
+
+/// The first step of an explicit adaptive method whose error estimate is of order \p p
+/// (local error \f$O(h^{p+1})\f$), from \p x at \p t: the starting step algorithm of
+/// Hairer, Norsett and Wanner, Solving Ordinary Differential Equations I, 2nd ed., section
+/// II.4 ("Starting Step Size"), as their code DOPRI5 computes it (HINIT, IORD = 5 for its
+/// fourth order estimate), in the norm of the step control: the RMS of \f$y_i/s_i\f$ over
+/// \f$y = (u, \beta)\f$ in local coordinates around \p x, \f$s_i = \mathrm{tol}\f$ for
+/// \f$u\f$, \f$\mathrm{tol}(1 + |\beta_{0,i}|)\f$ for \f$\beta\f$:
+/// \f[ d_0 = \|y_0\|,\quad d_1 = \|f(t_0, y_0)\|,\quad h_0 = 0.01\,d_0/d_1 \f]
+/// (\f$10^{-6}\f$ when \f$d_0\f$ or \f$d_1 < 10^{-5}\f$); the explicit Euler step
+/// \f$y_1 = y_0 + h_0 f(t_0, y_0)\f$, \f$d_2 = \|f(t_0 + h_0, y_1) - f(t_0, y_0)\|/h_0\f$;
+/// \f[ h_1 = \left(\frac{0.01}{\max(d_1, d_2)}\right)^{1/(p+1)} \f]
+/// (\f$\max(10^{-6}, 10^{-3}h_0)\f$ when \f$\max(d_1, d_2) \le 10^{-15}\f$), and
+/// \f$h = \min(100\,h_0, h_1)\f$. Two evaluations of the dynamics.
+template <class S>
+S starting_step(StepperT<S>& stepper, int nv, S t, const StateT<S>& x, S tol, int p) {
+  auto norm = [&](const VecX<S>& y) {
+    S e2 = S(0);
+    for (int i = 0; i < nv; ++i) {
+      const S su = tol, sb = tol * (S(1) + std::abs(x.beta[i]));
+      e2 += (y[i] / su) * (y[i] / su) + (y[nv + i] / sb) * (y[nv + i] / sb);
+    }
+    return nv > 0 ? std::sqrt(e2 / S(2 * nv)) : S(0);
+  };
+  VecX<S> y0 = VecX<S>::Zero(2 * nv), f0, f1;
+  y0.tail(nv) = x.beta;
+  stepper.rate_at(t, x, VecX<S>::Zero(2 * nv), f0);
+  const S d0 = norm(y0), d1 = norm(f0);
+  S h0 = d0 < S(1e-5) || d1 < S(1e-5) ? S(1e-6) : S(0.01) * d0 / d1;
+  if (!(h0 > S(0) && h0 < std::numeric_limits<S>::infinity())) h0 = S(1e-6);
+  const VecX<S> z1 = h0 * f0;  // the explicit Euler step, as a change of (u, beta)
+  try {
+    stepper.rate_at(t + h0, x, z1, f1);
+  } catch (const Error&) {
+    return h0;  // the dynamics fail at y1: the first trial step's control takes over
+  }
+  const S d2 = norm(f1 - f0) / h0;
+  const S d12 = std::max(d1, d2);
+  const S h1 =
+      d12 <= S(1e-15) ? std::max(S(1e-6), S(1e-3) * h0) : std::pow(S(0.01) / d12, S(1) / S(p + 1));
+  const S h = std::min(S(100) * h0, h1);
+  return h > S(0) && h < std::numeric_limits<S>::infinity() ? h : h0;
+}
 
 /// Integrates \p sys from the state \p x (overwritten by the final state) over
 /// [0, opt.t_end]. \p observe(t, x) is called at t = 0 and after every accepted step. A run
@@ -149,7 +205,10 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   sum.energy0 = sum.energy1 = double(E0);
   const S v_ref = std::max(S(1), x.beta.template lpNorm<Eigen::Infinity>());
   S t = S(0);
-  S h = opt.dt > S(0) ? opt.dt : S(1e-3) * std::max(opt.t_end, S(1e-3));
+  S h = opt.dt > S(0) ? opt.dt
+        : opt.method == Integrator::DormandPrince
+            ? starting_step(stepper, nv, t, x, opt.tol, embedded_order(opt.method))
+            : S(1e-3) * std::max(opt.t_end, S(1e-3));
   // Fixed steps divide [0, t_end] evenly: h = t_end / ceil(t_end / dt).
   const long n_fixed =
       adaptive ? 0 : std::max(1L, long(std::ceil(double(opt.t_end) / double(opt.dt) - 1e-9)));
@@ -157,6 +216,7 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
   observe(t, x);
   StateT<S> x1 = x;
   VecX<S> err;
+  int non_finite = 0;  // trial steps rejected in a row for an overflow
   // The stiffness is estimated at the start: by the time a run has blown up, its last
   // state's rates are large and the estimate there says more about them than about the
   // scene (it is given too).
@@ -234,9 +294,14 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       sum.interrupted = true;
       break;
     }
+    if (opt.max_steps > 0 && sum.steps >= opt.max_steps) {
+      sum.budget_spent = true;
+      break;
+    }
     if (adaptive) h = std::min(h, opt.t_end - t);
     const S h_step = h;  // the step being taken (dopri5 changes h once it is accepted)
     bool ok = true;
+    std::string trial_failure;  // an adaptive trial step whose dynamics failed (an overflow)
     try {
       switch (opt.method) {
         case Integrator::Euler:
@@ -267,7 +332,25 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
     } catch (const Error& e) {
       const std::string msg = e.what();
       if (msg.find("singular") != std::string::npos) throw;
-      blow_up(msg, h);
+      if (!adaptive) blow_up(msg, h);
+      trial_failure = msg;
+    }
+    // An adaptive trial step that overflowed (its dynamics failed, its error estimate or
+    // its state not finite) is rejected and taken again smaller, as CVODE does with a
+    // recoverable failure (kNonFiniteRetries, kNonFiniteShrink); only a run of such
+    // rejections is a blow-up.
+    auto reject_non_finite = [&](const std::string& what) {
+      ++sum.rejected;
+      if (++non_finite >= kNonFiniteRetries)
+        blow_up(what + " (" + std::to_string(kNonFiniteRetries) +
+                    " trial steps in a row, each smaller by " + detail::format_g(kNonFiniteShrink) +
+                    ")",
+                h_step);
+      h = h_step * S(kNonFiniteShrink);
+    };
+    if (!trial_failure.empty()) {
+      reject_non_finite(trial_failure);
+      continue;
     }
     if (!ok && is_adaptive_implicit(opt.method)) {
       ++sum.rejected;
@@ -307,13 +390,18 @@ SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationO
       const S e = nv > 0 ? std::sqrt(e2 / S(2 * nv)) : S(0);
       const S factor =
           std::min(S(5), std::max(S(0.2), S(0.9) * std::pow(std::max(e, S(1e-10)), exponent)));
-      if (!(e <= S(1)) && std::isfinite(double(e))) {
+      if (!std::isfinite(double(e)) || !x1.theta.allFinite() || !x1.beta.allFinite()) {
+        reject_non_finite(std::isfinite(double(e)) ? "the state is not finite"
+                                                   : "the error estimate is not finite");
+        continue;
+      }
+      non_finite = 0;
+      if (!(e <= S(1))) {
         ++sum.rejected;
         h *= factor;
         if (h < S(16) * eps<S>() * std::max(S(1), t)) blow_up("the step size underflowed", h);
         continue;
       }
-      if (!std::isfinite(double(e))) blow_up("the error estimate is not finite", h);
       t += h;
       // esdirk4 and radau5 keep their step (and so their LU factorizations, O(n_v^3)) when
       // the controller would grow it by less than 20 % (as RADAU5: Hairer and Wanner, Solving
