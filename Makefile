@@ -135,8 +135,8 @@ stub-sums:
 docs: build
 	cmake --build $(BUILD_DIR) --target docs
 
-# Then the speed targets of issue 17 in both configurations: this build (SOA_NATIVE, on by
-# default) and build/portable (SOA_NATIVE=OFF, double only), judged in build/bench/speed.md.
+# Then the speed targets in both configurations: this build (SOA_NATIVE, on by default) and
+# build/portable (SOA_NATIVE=OFF, double only), judged in build/bench/speed.md.
 PORT_DIR := build/portable
 bench: configure
 	@rm -f build/bench/targets_*.json build/bench/speed.md

@@ -1,8 +1,8 @@
 /// \file
-/// The extreme chains of lesson 6, section 7 (the start of the stability suite, issue 4):
-/// their construction, the mass matrix from the composite inertias one column at a time, the
-/// reference columns by Newton-Euler, the inverse mass matrix by the articulated body
-/// recursion at rest, and the evaluation of one case into a row of `l6_extreme.csv`.
+/// The extreme chains of lesson 6, section 7 (the start of the stability suite): their
+/// construction, the mass matrix from the composite inertias one column at a time, the
+/// reference columns by Newton-Euler, the inverse mass matrix by the articulated body recursion
+/// at rest, and the evaluation of one case into a row of `l6_extreme.csv`.
 #pragma once
 
 #include <Eigen/Eigenvalues>

@@ -519,7 +519,7 @@ int main(int argc, char** argv) {
   /// ## 7. Stability on extreme chains
   ///
   /// In exact arithmetic the recursions of lessons 5 and 6 are exact; in double precision
-  /// every step rounds. Here they meet the chains that break naive methods (issue 4): n
+  /// every step rounds. Here they meet the chains that break naive methods: n
   /// revolute hinges with every axis along z, links of 1 m, point-like bodies (centre of mass
   /// 0.5 m out along the link, rotational inertia J about it, down to \f$10^{-9}\f$), masses
   /// alternating heavy (1) and light (\f$10^{-3}\f$, \f$10^{-6}\f$, \f$10^{-8}\f$) from the base

@@ -682,7 +682,7 @@ int main(int argc, char** argv) {
   /// round trip \f$\text{ID}(\text{FD}(T)) = T\f$ for random \f$T\f$. The forward error of a
   /// backward-stable solve is bounded by \f$\varepsilon\,\mathrm{cond}(\mathcal M)\f$ times a
   /// modest factor; the tolerance is \f$16\,n\,\varepsilon\,\mathrm{cond}(\mathcal M)\f$, and
-  /// the `soa forward-dynamics` command must agree with CRB + LDLT to \f$10^{-10}\f$ (issue 5).
+  /// the `soa forward-dynamics` command must agree with CRB + LDLT to \f$10^{-10}\f$.
   /// Then 700 random chains of 1 to 12 bodies, every hinge type, with gravity, springs,
   /// external forces and rest states mixed in, and 70 chains of 20 bodies of a single hinge
   /// type each.

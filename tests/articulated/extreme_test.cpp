@@ -1,7 +1,7 @@
-// Property tests of the extreme chains of lesson 6 (section 7, issue 4): on soa::test::kCases
-// random chains from the fixed seed whose masses alternate heavy (1) and light (1e-8), heavy
-// or light first, with point-like bodies (isotropic rotational inertia 1e-9 to 1e-6 about a
-// centre of mass offset from the hinge), n <= 100,
+// Property tests of the extreme chains of lesson 6 (section 7): on soa::test::kCases random
+// chains from the fixed seed whose masses alternate heavy (1) and light (1e-8), heavy or light
+// first, with point-like bodies (isotropic rotational inertia 1e-9 to 1e-6 about a centre of
+// mass offset from the hinge), n <= 100,
 // - the mass matrix from the composite inertias (soa::mass_matrix_crb) equals the operator
 //   form H phi M phi* H* (soa::OperatorsT::mass_matrix), relative to the largest entry, to
 //   c n eps: the extreme masses cost no accuracy;

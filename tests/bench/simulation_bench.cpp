@@ -1,5 +1,5 @@
-// "Pay only for what the scene uses" (issue 6): the forward dynamics (lesson 8) and one
-// simulation step (soa::StepperT::rk4, ::symplectic_euler on a soa::ChainSystemT) on the
+// "Pay only for what the scene uses": the forward dynamics (lesson 8) and one simulation step
+// (soa::StepperT::rk4, ::symplectic_euler on a soa::ChainSystemT) on the
 // benchmark chain of bench_chain.hpp, N = 7 and 50, with every part of a scene ("full":
 // gravity, an external force on every body, a spring and damper on every hinge, random
 // rates), then each part left out in turn, all of them ("bare"), and each part present as

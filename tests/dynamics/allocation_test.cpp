@@ -74,9 +74,9 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
   }
 }
 
-// The implicit integrators' steps (issue 16): nothing per step once the first step has
-// sized the workspace, the Jacobian and its factorization included, on chains of every
-// hinge type with gravity and springs.
+// The implicit integrators' steps: nothing per step once the first step has sized the
+// workspace, the Jacobian and its factorization included, on chains of every hinge type with
+// gravity and springs.
 TEST(dynamics_Allocation, NoneInAnImplicitStep) {
   Random<double> rnd(44);
   soa::test::ChainOptions opt;
@@ -153,8 +153,8 @@ TEST(dynamics_Allocation, NoneInAVariationalStep) {
   }
 }
 
-// The stiffness monitor of soa::simulate (issue 16): an Arnoldi estimate of the dominant
-// eigenvalue, first and later checks, allocates nothing once built.
+// The stiffness monitor of soa::simulate: an Arnoldi estimate of the dominant eigenvalue, first
+// and later checks, allocates nothing once built.
 TEST(dynamics_Allocation, NoneInAStiffnessCheck) {
   Random<double> rnd(45);
   soa::test::ChainOptions opt;

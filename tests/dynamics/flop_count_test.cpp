@@ -1,6 +1,6 @@
-// The counting scalar of the flop counts (issue 17, lesson 8's report `work`): it counts
-// known kernels exactly, its results are double's to rounding, and the counts show the
-// fast paths doing less work than the general path.
+// The counting scalar of the flop counts (lesson 8's report `work`): it counts known kernels
+// exactly, its results are double's to rounding, and the counts show the fast paths doing less
+// work than the general path.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

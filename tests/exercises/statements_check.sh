@@ -1,5 +1,5 @@
 #!/bin/sh
-# ctest exercises.statements: what the issue asks of every exercise, checked on the sources.
+# ctest exercises.statements: what every exercise statement must have, checked on the sources.
 #   - each statement (exercises/NN-topic/exercises.hpp) has its level, time and what it uses
 #     ("*Level L of 3, about M min; uses N.J.*") under its title, and "uses" names exercises
 #     that exist;

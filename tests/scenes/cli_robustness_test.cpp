@@ -1,5 +1,5 @@
 /// \file
-/// The `soa` command as a hostile user drives it (issue 11): nothing lost, nothing silent.
+/// The `soa` command as a hostile user drives it: nothing lost, nothing silent.
 /// Each test runs the program (fork/exec) and checks what it left behind:
 /// - `--out` that is the scene (other spelling, symbolic or hard link) is refused, the
 ///   scene intact; a full disk (`/dev/full`) on --out or stdout is exit 1 with the reason;
@@ -646,7 +646,7 @@ TEST(cli_robustness, InputsThatAreNotSceneFilesAreRefusedPromptly) {
   EXPECT_EQ(dir.err, s.dir() + ": is a directory, not a scene file\n");
 }
 
-// --- the 3D viewer (issue 14) ----------------------------------------------------------
+// --- the 3D viewer --------------------------------------------------------------------
 
 TEST(cli_robustness, ViewOfAStateIsOneFrameAtThatState) {
   // --q, --qd in file order reach the viewer: its poses are the kinematics verb's positions.

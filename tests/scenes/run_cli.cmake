@@ -66,8 +66,8 @@ function(expect_numbers n)
   if(NOT len EQUAL n)
     message(FATAL_ERROR "${ran}: ${ARGN} has ${len} entries, expected ${n}")
   endif()
-  # Every entry a JSON number, checked on the array's text (one parse, not one per entry:
-  # a 50 x 50 matrix took 20 s the other way).
+  # Every entry a JSON number, checked on the array's text (one parse, not one per entry, which
+  # is slow already on a 50 x 50 matrix).
   string(JSON text GET "${out}" ${ARGN})
   string(REGEX REPLACE "[ \t\r\n]" "" text "${text}")
   set(number "-?(0|[1-9][0-9]*)(\\.[0-9]+)?([eE][-+]?[0-9]+)?")
@@ -136,7 +136,7 @@ elseif(CHECK STREQUAL "jacobian")
   endforeach()
 elseif(CHECK STREQUAL "forward-dynamics")
   # qdd has NV numbers; the round trip through inverse dynamics leaves 1e-12 of the terms,
-  # and qdd agrees with CRB + LDLT to 1e-10 relative (issue 5) where that check ran.
+  # and qdd agrees with CRB + LDLT to 1e-10 relative where that check ran.
   expect_numbers(${NV} qdd)
   expect_members(${NB} accelerations)
   string(JSON r GET "${out}" check round_trip_residual)

@@ -96,7 +96,7 @@ const std::map<std::string, std::string>& expected_messages() {
        "helical, universal, spherical, free or locked)"},
       {"zero_axis", "bodies[1].hinge.axis: zero axis; an axis needs a direction"},
       {"axis_on_spherical", "bodies[1].hinge: field \"axis\" does not apply to a spherical hinge"},
-      // massless bodies, limits and friction (issue 15)
+      // massless bodies, limits and friction (what URDF scenes bring)
       {"massless_moving_tip",
        "bodies[1]: massless, and so is every body outboard of it: its revolute hinge moves "
        "nothing of mass (give a body a mass, or lock the hinge)"},

@@ -415,9 +415,9 @@ TEST(scene_scale, HugeInertiaIsRead) {
   EXPECT_EQ(s.model.body(1).M.J(), Mat3<double>(Vec3<double>::Constant(1e308).asDiagonal()));
 }
 
-// 10^5 bodies read in O(n), about a second (the DOM parser with a callback took 4-9 s,
-// re-scanning the bodies array after every body; the time is checked in optimized builds),
-// and a field given twice in the last one is still found.
+// 10^5 bodies read in O(n) (a DOM parser with a callback that re-scans the bodies array after
+// every body is O(n^2); make bench measures the time), and a field given twice in the last
+// one is still found.
 TEST(scene_scale, LargeSceneIsReadWhole) {
   const std::size_t n = 100000;
   const Scene s = parse_scene(revolute_chain_text(n), "large.json");

@@ -1,5 +1,5 @@
-// "Pay only for what the scene uses" (issue 6): a part of the scene that is left out is
-// skipped by soa::forward_dynamics() and so by every integrator of soa::StepperT, and the
+// "Pay only for what the scene uses": a part of the scene that is left out is skipped by
+// soa::forward_dynamics() and so by every integrator of soa::StepperT, and the
 // skipped result must be bitwise (==, so 0 and -0 count as equal) the result with the part
 // present and zero. On random chains of every hinge type from the fixed seed, with gravity,
 // external forces, springs and dampers on every hinge and random rates ("full"), each part

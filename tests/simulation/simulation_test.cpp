@@ -10,7 +10,7 @@
 // - a stiff spring blows up explicit methods with a message giving the time, the step and
 //   the stiffness x step; implicit midpoint runs through at the same step;
 // - no external forces and explicit zero forces give bitwise the same trajectory;
-// - esdirk4 and radau5 (issue 16): their tableaus meet the order conditions (Radau IIA's
+// - esdirk4 and radau5: their tableaus meet the order conditions (Radau IIA's
 //   derived one: collocation, quadrature of order 5, the block form of T^-1 A^-1 T, the
 //   embedded order 3), a fixed step converges at order 4 and 5, the adaptive run's error
 //   follows the tolerance (radau5's within a few times it); a stiff, damped spring from its
@@ -275,8 +275,8 @@ double stiff_omega() {
   return std::sqrt(1e6 / (2 * (sys.energy(x) - E0)));
 }
 
-// Issue 16: the stiffness monitor (on by default) stops the explicit methods at the first
-// step, before the blow-up, with h lambda; at h omega ~ 0.6 it lets RK4 run.
+// The stiffness monitor (on by default) stops the explicit methods at the first step, before
+// the blow-up, with h lambda; at h omega ~ 0.6 it lets RK4 run.
 TEST(simulation_Stiffness, TheMonitorStopsExplicitMethodsBeyondTheirBound) {
   for (Integrator I : {Integrator::Euler, Integrator::SymplecticEuler, Integrator::RK4}) {
     const std::string msg = blow_up_message(I, 1e-3, soa::StiffnessPolicy::Stop);
@@ -460,9 +460,9 @@ TEST(simulation_Stiffness, TheBoundIsTheMethods) {
   }
 }
 
-// Issue 11: a step count that does not fit is refused with the numbers (it overflowed a
-// long and ran one step of 1 s); dopri5 with its error control switched off (tol 1e300)
-// blows up at a time inside [0, t_end], not a negative one.
+// A step count that does not fit is refused with the numbers (it overflowed a long and ran one
+// step of 1 s); dopri5 with its error control switched off (tol 1e300) blows up at a time
+// inside [0, t_end], not a negative one.
 TEST(simulation_Limits, StepCountsThatDoNotFitAreRefused) {
   const Scene s = chain(117, 3, false, true);
   for (const auto& [dt, t_end] : {std::pair{1e-300, 1.0}, std::pair{1.0, 1e30}}) {

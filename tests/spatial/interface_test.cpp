@@ -1,6 +1,6 @@
 /// \file
-/// The library's interface as a student meets it (issue 13): every code snippet of the
-/// exercise statements (exercises/*/exercises.hpp), written as a student would write it,
+/// The library's interface as a student meets it: every code snippet of the exercise statements
+/// (exercises/*/exercises.hpp), written as a student would write it,
 /// compiles and gives what the plain call gives. Free functions take Eigen expressions
 /// (`exp_so3(theta * a)`, `tilde(X.angular())`, `VecX<double>::Zero(n)`) through thin
 /// forwarding overloads, and `{}` where an argument is naturally empty (external forces, the

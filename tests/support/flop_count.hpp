@@ -1,9 +1,9 @@
 /// \file
-/// Flop counts of the chain algorithms, from the code as it runs (issue 17): each algorithm
-/// called on chains of the scalar soa::test::Counted, with the benchmarks' set-up, the
-/// operations counted per call. Per body: the difference between chains of n and 2n
-/// bodies, so that what a call does once drops out. Used by the flop-count test
-/// (tests/dynamics/flop_count_test.cpp) and lesson 8's report (lessons/08-.../work/).
+/// Flop counts of the chain algorithms, from the code as it runs: each algorithm called on
+/// chains of the scalar soa::test::Counted, with the benchmarks' set-up, the operations counted
+/// per call. Per body: the difference between chains of n and 2n bodies, so that what a call
+/// does once drops out. Used by the flop-count test (tests/dynamics/flop_count_test.cpp) and
+/// lesson 8's report (lessons/08-.../work/).
 #pragma once
 
 #include <cmath>

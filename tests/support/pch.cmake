@@ -1,6 +1,6 @@
 # Precompiled headers for the check code (tests, exercise tests, lessons, exercises and
 # solutions): Eigen, the library and (for tests) GoogleTest are parsed once per build instead
-# of once per translation unit, about 4 CPU-seconds each (CI's cost: see tests/CMakeLists.txt).
+# of once per translation unit, several CPU-seconds each (CI's cost: see tests/CMakeLists.txt).
 # Two headers, each built once by its own object library and reused (REUSE_FROM) by every
 # target of its kind; the reusing targets must compile with the same flags, which
 # SOA_CHECK_OPT and the directory-wide warnings give them (CMake adds -Winvalid-pch, which

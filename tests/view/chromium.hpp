@@ -6,7 +6,7 @@
 /// Chromium renders WebGL in software (SwiftShader: `--use-angle=swiftshader
 /// --enable-unsafe-swiftshader`; with `--disable-gpu` or `--use-gl=swiftshader` the canvas
 /// stays blank), every host name resolves to nothing (a network load fails loudly), and each
-/// load gets a fresh profile. One load takes 2-3 s.
+/// load gets a fresh profile. One load takes seconds.
 ///
 /// A test of a folder written by `soa view` is a few lines:
 ///

@@ -1,5 +1,5 @@
 /// \file
-/// SUNDIALS CVODE as the field's reference integrator of the simulation report (issue 16).
+/// SUNDIALS CVODE as the field's reference integrator of the simulation report.
 ///
 /// CVODE (Hindmarsh et al., "SUNDIALS: Suite of nonlinear and differential/algebraic equation
 /// solvers", ACM TOMS 31(3), 2005) integrates \f$\dot y = f(t, y)\f$ by the backward

@@ -1,5 +1,5 @@
-// The simulation report of issue 6, run by `make run` before lesson 8's program (`make
-// test` does not build it):
+// Lesson 8's simulation report, run by `make run` before lesson 8's program (`make test` does
+// not build it):
 //   lesson08_simulation OUTPUT_DIR [--quick]
 // 1. Error against run time: on each default scene (double pendulum, seven-joint arm,
 //    50-link chain) and a stiff-spring chain, every integrator over a sweep of steps (or

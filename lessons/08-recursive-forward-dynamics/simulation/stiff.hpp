@@ -383,8 +383,8 @@ inline void stiff_section(Checklist& checks, const std::filesystem::path& out, b
       quick ? std::vector<double>{1e8} : std::vector<double>{1e6, 1e8};
   const std::vector<double> multiples =
       quick ? std::vector<double>{100, 1000} : std::vector<double>{10, 100, 1000};
-  // The reference of the stiffest chain costs about 2 s per second simulated (its step is
-  // held at Dormand-Prince's stability bound): --quick simulates a quarter second.
+  // The reference of the stiffest chain costs seconds of run time per second simulated (its
+  // step is held at Dormand-Prince's stability bound): --quick simulates a quarter second.
   const double t_end = quick ? 0.25 : 1;
   for (double k : k_implicit) {
     const std::size_t ki = std::size_t(std::find(ks.begin(), ks.end(), k) - ks.begin());

@@ -1,7 +1,7 @@
 /// \file
-/// What every section of the simulation report (issue 6) uses: a scene as a problem, one
-/// timed run of an integrator, the reference solution, the error of a final state, the
-/// fitted order of convergence, and the summary the last section writes.
+/// What every section of the simulation report uses: a scene as a problem, one timed run of an
+/// integrator, the reference solution, the error of a final state, the fitted order of
+/// convergence, and the summary the last section writes.
 #pragma once
 
 #include <algorithm>

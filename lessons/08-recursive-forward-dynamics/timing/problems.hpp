@@ -1,8 +1,8 @@
 /// \file
-/// The problems of lesson 8's error-against-run-time report (issue 5): the benchmark chain of
-/// `make bench` and the extreme chains of lesson 6 with joint rates, built in double and cast
-/// to float and long double; the four ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$
-/// and the errors of their results.
+/// The problems of lesson 8's error-against-run-time report: the benchmark chain of `make
+/// bench` and the extreme chains of lesson 6 with joint rates, built in double and cast to
+/// float and long double; the four ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$ and
+/// the errors of their results.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -140,8 +140,8 @@ inline Problem<double> extreme_chain(const Spec& s) {
   return p;
 }
 
-/// The three ways of issue 5 to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$, and the
-/// fourth of issue 12: \f$\mathcal M^{-1}\f$ built on \f$\Upsilon\f$ (lesson 7, section 7).
+/// The three ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$, and a fourth:
+/// \f$\mathcal M^{-1}\f$ built on \f$\Upsilon\f$ (lesson 7, section 7).
 enum class Method { ABA, CRB, Minv, MinvUpsilon };
 inline const char* name(Method method) {
   return method == Method::ABA           ? "ABA"

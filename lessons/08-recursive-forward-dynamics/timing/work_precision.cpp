@@ -1,5 +1,5 @@
-// Lesson 8's error-against-run-time report (issue 5), run by `make run` before the lesson
-// program (`make test` does not build it; --quick runs a short version by hand):
+// Lesson 8's error-against-run-time report, run by `make run` before the lesson program (`make
+// test` does not build it; --quick runs a short version by hand):
 //   lesson08_timing OUTDIR [--quick]
 // 1. Revolute benchmark chains, N = 1 ... 2000: the time per call (Google Benchmark, median
 //    CPU time of repeated runs) and the forward error against the long double articulated
@@ -534,7 +534,7 @@ int main(int argc, char** argv) {
       if (r.N == N_big && refused_note(r))
         sum << " " << name(r.method) << " " << r.precision << " refused: " << r.note.substr(12)
             << ".";
-    sum << "\n- Target of issue 5, ABA forward error on the 1000-link chain ≤ 1e-12: "
+    sum << "\n- The report's target, ABA forward error on the 1000-link chain ≤ 1e-12: "
         << (cfg.quick ? std::string("not measured in quick mode")
                       : (aba_big && aba_big->forward_error <= 1e-12 ? "met, " : "NOT met, ") +
                             num(aba_big ? aba_big->forward_error : NAN, "%.1e"))
@@ -570,7 +570,7 @@ int main(int argc, char** argv) {
       nonfinite == 0);
   checks.check("ABA double forward error, every N (worst / N eps)", worst_aba, 16.0);
   if (!cfg.quick)
-    checks.check("ABA double forward error on the 1000-link chain (issue target)",
+    checks.check("ABA double forward error on the 1000-link chain (the report's target)",
                  aba_big ? aba_big->forward_error : NAN, 1e-12);
   checks.check("ABA / CRB + LDLT crossover found (double)", !std::isnan(cross_d));
   checks.check("l8_work_precision.csv, l8_times.md, l8_errors.md, l8_summary.md written",

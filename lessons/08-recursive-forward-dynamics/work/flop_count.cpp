@@ -1,4 +1,4 @@
-// Lesson 8's flop counts (issue 17), run by `make run` after the timing report:
+// Lesson 8's flop counts, run by `make run` after the timing report:
 //   lesson08_work OUTDIR
 // The work of each algorithm, counted from the code as it runs: the algorithms called on
 // the scalar soa::test::Counted (tests/support/counted_scalar.hpp), a double that counts

@@ -21,7 +21,7 @@
 // (lib/CMakeLists.txt, lib/src/instantiate.cpp.in), which declares the other groups extern:
 // each template is compiled once, in the small unit of its group. In one unit of everything
 // GCC's inlining limits for the whole unit left the recursions' small Eigen functions out of
-// line, and the linker kept that copy (forward dynamics 1.6x slower, issue 17).
+// line, and the linker kept that copy (forward dynamics measurably slower in make bench).
 #define SOA_TEMPLATES_CORE(PREFIX, S)                                                            \
   PREFIX template class PoseT<S>;                                                                \
   PREFIX template class PhiT<S>;                                                                 \

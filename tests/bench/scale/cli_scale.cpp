@@ -412,7 +412,7 @@ std::uint64_t free_bytes(const fs::path& dir) {
   return std::uint64_t(v.f_bavail) * v.f_frsize;
 }
 
-// What a size needs on disk: the scene (about 330 bytes a body; 290 measured) and one
+// What a size needs on disk: the scene (330 bytes a body, above its measured size) and one
 // verb's output at a time, at most its file-size limit.
 std::uint64_t scene_estimate(long n) {
   return 330ull * std::uint64_t(n) + (1 << 20);

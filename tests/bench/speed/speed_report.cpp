@@ -1,7 +1,7 @@
-// The speed targets of issue 17, judged from one `make bench` run: reads the target
-// benchmarks' JSON of each build configuration (targets_<config>_<program>.json, written by
-// the bench_targets target of that build: native = SOA_NATIVE, portable = without it), the
-// recorded "before" times (baseline.json), and writes speed.md (also printed).
+// The speed targets, judged from one `make bench` run: reads the target benchmarks' JSON of
+// each build configuration (targets_<config>_<program>.json, written by the bench_targets
+// target of that build: native = SOA_NATIVE, portable = without it), the recorded "before"
+// times (baseline.json), and writes speed.md (also printed).
 //
 //   speed_report <bench dir> <baseline.json>
 //
@@ -10,10 +10,11 @@
 //   forward dynamics (ABA)      <= 1.0 us at N = 7, <= 130 ns per joint  (N = 50, 200, 1000),
 //                               full and lean storage (ForwardDynamicsT::lean())
 //   mass matrix                 <= 0.8 x the fastest published O(N^2) CRB (N = 7, 200, 1000):
-//                               the issue measured Pinocchio 1.44x, 3.7x, 5.5x faster than
-//                               MassMatrixCRB, so the bound is 0.8 / r x MassMatrixCRB of the
+//                               Pinocchio was 1.44x, 3.7x, 5.5x faster than MassMatrixCRB
+//                               when the targets were set (`published` below; README
+//                               "Speed"), so the bound is 0.8 / r x MassMatrixCRB of the
 //                               same run and configuration (conservative: today's CRB is no
-//                               slower than the one the issue timed)
+//                               slower than the one timed then)
 //   M^-1                        <= 0.6 x before (N = 200, 1000), before = baseline.json
 #include <algorithm>
 #include <cstdio>
@@ -139,7 +140,7 @@ int report(int argc, char** argv) {
     targets.push_back({"inverse dynamics", "InverseDynamics/" + std::to_string(n), n, true,
                        "≤ 55 ns per joint", fixed(55.0 * n)});
   // Both storages of ForwardDynamicsT: the full one keeps every per-body quantity of
-  // lesson 8 (about 1.8 kB a revolute body), the lean one what soa::simulate reads.
+  // lesson 8 (its size a body: README "Speed"), the lean one what soa::simulate reads.
   for (const char* storage : {"", "Lean"}) {
     const std::string what = *storage ? "forward dynamics, lean storage (soa::simulate)"
                                       : "forward dynamics, full storage";
@@ -162,7 +163,7 @@ int report(int argc, char** argv) {
   }
 
   std::ostringstream md;
-  md << "# Speed targets (issue 17), one `make bench` run\n\n";
+  md << "# Speed targets, one `make bench` run\n\n";
   md << "Machine: " << cpu_model() << ", " << std::thread::hardware_concurrency()
      << " logical CPUs. Benchmark chain: revolute, alternating axes (tests/bench/"
         "bench_chain.hpp), double. Each time is the median CPU time of the repetitions "

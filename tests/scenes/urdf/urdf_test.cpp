@@ -1,9 +1,9 @@
 /// \file
-/// URDF scenes (issue 15, docs/scenes.md "URDF input"): each case of the mapping onto the
-/// course's chain, checked on small robots written by the test (random numbers from a fixed
-/// seed where a case has numbers), each error with its message (the files of
-/// tests/scenes/urdf/bad/), urdfdom silent, `soa convert`'s JSON giving the same model bit
-/// for bit, and the default scenes' URDF and JSON files agreeing. Suite urdf.
+/// URDF scenes (docs/scenes.md "URDF input"): each case of the mapping onto the course's chain,
+/// checked on small robots written by the test (random numbers from a fixed seed where a case
+/// has numbers), each error with its message (the files of tests/scenes/urdf/bad/), urdfdom
+/// silent, `soa convert`'s JSON giving the same model bit for bit, and the default scenes' URDF
+/// and JSON files agreeing. Suite urdf.
 #include <fcntl.h>
 #include <unistd.h>
 

@@ -17,11 +17,12 @@ using HingeVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1>;
 /// Per-body results of the forward dynamics, sized once for a model (nothing is allocated
 /// per call). `art` holds \f$P, P^+, D, G\f$ of the Riccati recursion (lesson 6).
 ///
-/// Lean storage (ForwardDynamicsT::lean()) keeps only what the last pass needs, \f$G(k)\f$
-/// and \f$\nu(k)\f$, packed (\f$6 n_v + n_v\f$ numbers), with `art` rolling over the last
-/// two bodies and no \f$z, z^+, \alpha^+\f$: about 56 bytes a revolute body instead of
-/// about 1.8 kB, for chains of a million bodies (`soa forward-dynamics`). The arithmetic is
-/// the same, so is the result, bit for bit (tested).
+/// Lean storage (ForwardDynamicsT::lean()) keeps only what the last pass needs, \f$G(k)\f$ and
+/// \f$\nu(k)\f$, packed (\f$6 n_v + n_v\f$ numbers), with `art` rolling over the last two
+/// bodies and no \f$z, z^+, \alpha^+\f$: about 56 bytes a revolute body instead of every
+/// per-body quantity of the full storage (its size: README "Speed"), for chains of a million
+/// bodies (`soa forward-dynamics`). The arithmetic is the same, so is the result, bit for bit
+/// (tested).
 template <class S>
 struct ForwardDynamicsT {
   explicit ForwardDynamicsT(const ModelT<S>& m)

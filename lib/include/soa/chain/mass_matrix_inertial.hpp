@@ -92,7 +92,7 @@ EIGEN_ALWAYS_INLINE S row_dot(const S* X, Eigen::Index ld, Eigen::Index i, const
 /// \f$\mathcal M\f$ is exactly symmetric. With Model::fast_paths a \f$\phi\f$ turning about a
 /// coordinate axis composes the poses and moves the composite inertias in its plane
 /// (detail::plane_times(), soa::transform()), and a revolute hinge about \f$\pm e_i\f$ takes
-/// its columns of the pose and of \f$J\f$ (issue 17's fast paths). Needs update_phi().
+/// its columns of the pose and of \f$J\f$ (the fast paths). Needs update_phi().
 template <class S>
 void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
                           MassMatrixInertialT<S>& w, MatX<S>& Mass) {

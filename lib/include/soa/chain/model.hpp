@@ -79,7 +79,7 @@ class ModelT {
     PoseT<S> carry;  // placement of a locked run, to prepend to the next real hinge
     bool carrying = false;
     // The kept bodies are compacted in place, base_first[0, n): one copy of the chain in
-    // memory, not three (a million bodies are 370 MB each).
+    // memory, not three (a million bodies are hundreds of MB each).
     std::size_t n_kept = 0;
     for (std::size_t i = 0; i < base_first.size(); ++i) {
       BodyT<S>& b = base_first[i];

@@ -1,8 +1,8 @@
 /// \file
-/// Rotations about a coordinate axis: the fast paths of the recursions (issue 17). A joint
-/// about \f$\pm e_i\f$ with an unrotated placement gives \f$\phi(k,k-1)\f$ a rotation about
-/// \f$e_i\f$: only the plane \f$(e_j, e_k)\f$ of it mixes, so products with it drop the
-/// exact zeros and ones of \f$R\f$.
+/// Rotations about a coordinate axis: the fast paths of the recursions. A joint about
+/// \f$\pm e_i\f$ with an unrotated placement gives \f$\phi(k,k-1)\f$ a rotation about
+/// \f$e_i\f$: only the plane \f$(e_j, e_k)\f$ of it mixes, so products with it drop the exact
+/// zeros and ones of \f$R\f$.
 #pragma once
 
 #include <type_traits>
