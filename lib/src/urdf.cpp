@@ -978,10 +978,12 @@ class Writer {
           "Ixy",  "Ixz",  "Iyz",  "lower",     "upper",    "effort",   "velocity", "damping"};
       for (const char* k : order)
         if (v.contains(k)) field(k, v.at(k));
-      for (const auto& [k, x] : v.items())
+      for (const auto& item : v.items()) {
+        const std::string& k = item.key();
         if (std::find_if(std::begin(order), std::end(order),
                          [&](const char* o) { return k == o; }) == std::end(order))
-          field(k, x);
+          field(k, item.value());
+      }
       s_ += "}";
     } else {
       s_ += v.dump();  // a string, escaped
