@@ -350,6 +350,7 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
   return d_min;
 }
 
+/// The fast form of soa::reference::articulated_inertias().
 /// The articulated body inertias by the Riccati recursion (lesson 6), tip to base: every
 /// riccati_step(), with the composite inertias \f$R(k)\f$ of lesson 5 kept in \p out.R. A
 /// hinge whose \f$D(k)\f$ is singular or numerically singular (a massless tip, an inertia

@@ -44,6 +44,7 @@ void composite_inertias(const ModelT<S>& m, const WorkspaceT<S>& ws,
   detail::composite_sweep(m, ws, R.data(), static_cast<int*>(nullptr));
 }
 
+/// The fast form of soa::reference::mass_matrix().
 /// The mass matrix from the composite inertias (lesson 5), \f$O(N^2)\f$:
 /// \f[ \mathcal{M}(k,k) = H(k) R(k) H^*(k), \qquad
 ///     \mathcal{M}(i,j) = H(i)\,\phi(i,j)\,R(j)\,H^*(j) = \mathcal{M}^*(j,i),\ i > j, \f]
@@ -88,6 +89,7 @@ MatX<S> composite_inertia_operator(const ModelT<S>& m, const WorkspaceT<S>& ws) 
   return Rd;
 }
 
+/// The fast form of soa::reference::inverse_dynamics().
 /// Inverse dynamics through the composite bodies (lesson 5), O(N). With the relative
 /// accelerations \f$z = H^*\dot\beta + a\f$ (so \f$\alpha = \phi^* z\f$) the decomposition
 /// \f$\phi M\phi^* = R + \tilde\phi R + R\tilde\phi^*\f$ turns \f$f = \phi(M\phi^* z + b)\f$

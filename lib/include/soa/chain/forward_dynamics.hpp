@@ -87,6 +87,7 @@ template <class S>
               " is not finite (overflow: check the scale of masses, forces and rates)");
 }
 
+/// The fast form of soa::reference::forward_dynamics().
 /// The articulated body forward dynamics (lesson 8), O(N): the accelerations
 /// \f$\dot\beta = \mathcal M^{-1}(T - \mathcal C)\f$ without forming \f$\mathcal M\f$.
 ///

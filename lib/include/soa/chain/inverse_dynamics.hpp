@@ -59,6 +59,7 @@ EIGEN_ALWAYS_INLINE void body_force(const SpatialInertiaT<S>& M, const Vec3<S>& 
 
 }  // namespace detail
 
+/// The fast form of soa::reference::inverse_dynamics().
 /// Newton-Euler inverse dynamics (lesson 4): the hinge forces \f$T\f$ that give the chain
 /// the accelerations \f$\dot\beta\f$ at the state \p x.
 ///

@@ -6,6 +6,7 @@
 
 namespace soa {
 
+/// The fast form of soa::reference::jacobian().
 /// The Jacobian of a frame F fixed on body k, placed at \f${}^{O_k}T_F\f$:
 /// \f$V(F) = J\,\beta\f$ with \f$V(F)\f$ in F coordinates (lesson 3:
 /// \f$J = B^*\phi^* H^*\f$, \f$B^*\f$ picking body k and moving it to F). Column block of

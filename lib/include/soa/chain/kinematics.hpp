@@ -105,6 +105,7 @@ void hinge_sin_cos(const ModelT<S>& m, const S* theta, WorkspaceT<S>& ws) {
   }
 }
 
+/// The fast form of soa::reference::joint_transforms().
 /// \f$\phi(k+1,k)\f$ for every body (joint_phi(), after hinge_sin_cos()).
 template <class S>
 void update_phi(const ModelT<S>& m, const VecX<S>& theta, WorkspaceT<S>& ws) {
@@ -213,6 +214,7 @@ EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>
 
 }  // namespace detail
 
+/// The fast form of soa::reference::velocities().
 /// Velocities \f$V(k) = \phi^*(k+1,k)\,V(k+1) + H^*(k)\beta(k)\f$ and Coriolis terms
 /// \f$a(k)\f$, base to tip (\f$V(n+1) = 0\f$). Needs update_phi(). At rest (\f$\beta = 0\f$)
 /// every \f$V\f$ and \f$a\f$ is zero and nothing else is computed.
@@ -239,6 +241,7 @@ void update_velocities(const ModelT<S>& m, const StateT<S>& x, WorkspaceT<S>& ws
   }
 }
 
+/// The fast form of soa::reference::kinematics().
 /// Accelerations \f$\alpha(k) = \phi^*(k+1,k)\,\alpha(k+1) + H^*(k)\dot\beta(k) + a(k)\f$,
 /// base to tip, from the base acceleration \f$\alpha(n+1) = [0; -g]\f$ (gravity, lesson 4)
 /// given in inertial coordinates. \p beta_dot may be null for \f$\dot\beta = 0\f$.

@@ -67,6 +67,7 @@ EIGEN_ALWAYS_INLINE S row_dot(const S* X, Eigen::Index ld, Eigen::Index i, const
 
 }  // namespace detail
 
+/// The fast form of soa::reference::mass_matrix().
 /// The mass matrix of lesson 5 with the products hoisted, \f$O(N^2)\f$. Lesson 5 writes
 /// \f$\mathcal M(i,j) = H(i)\,\phi(i,j)\,R(j)\,H^*(j)\f$ for \f$i > j\f$ and carries the force
 /// column \f$R(j)H^*(j)\f$ inboard one \f$\phi(i,i-1)\f$ at a time: every entry waits for the

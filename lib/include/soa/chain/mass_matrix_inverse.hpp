@@ -242,6 +242,7 @@ EIGEN_ALWAYS_INLINE int unit_column(const HingeT<S>& h) {
 
 }  // namespace detail
 
+/// The fast form of soa::reference::mass_matrix_inverse().
 /// The inverse of the mass matrix (lesson 7), \f$O(N^2)\f$, from the innovations
 /// factorization \f$\mathcal M^{-1} = [I - H\psi K]^* D^{-1} [I - H\psi K]\f$: the forward
 /// dynamics of lesson 8 with the bias terms dropped and all unit hinge forces \f$T = e_j\f$

@@ -9,6 +9,7 @@
 
 namespace soa {
 
+/// The fast form of soa::reference::mass_matrix_inverse_times().
 /// \f$\beta = \mathcal M^{-1}(\theta)\,T\f$ by the innovations factorization \f$\mathcal
 /// M^{-1} = [I - H\psi K]^* D^{-1} [I - H\psi K]\f$ (lesson 7), i.e. soa::forward_dynamics()
 /// with every bias term dropped (no velocity, gravity, springs or external forces). Tip to
