@@ -9,13 +9,18 @@
 #                   the speed targets in both configurations judged in build/bench/speed.md
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
-# Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), BUILD_TYPE=Debug (in
-# build/debug), TESTS=regex (make test runs only the ctest tests it matches).
+# Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), SANITIZE=clang (the same
+# with clang, in build/sanitize-clang: its AddressSanitizer also finds uses after scope that
+# GCC's misses), BUILD_TYPE=Debug (in build/debug), TESTS=regex (make test runs only the ctest
+# tests it matches).
 
 BUILD_TYPE ?= Release
 ifeq ($(SANITIZE),1)
   BUILD_DIR ?= build/sanitize
   SAN_FLAG := -DSOA_SANITIZE=ON
+else ifeq ($(SANITIZE),clang)
+  BUILD_DIR ?= build/sanitize-clang
+  SAN_FLAG := -DSOA_SANITIZE=ON -DCMAKE_CXX_COMPILER=clang++
 else ifeq ($(BUILD_TYPE),Debug)
   BUILD_DIR ?= build/debug
   SAN_FLAG := -DSOA_SANITIZE=OFF
@@ -29,7 +34,10 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # missing ones are installed.
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
-  libjs-three chromium pkgconf liburdfdom-dev libsundials-dev libsleef-dev
+  libjs-three chromium pkgconf liburdfdom-dev libtinyxml-dev libsundials-dev libsleef-dev
+ifeq ($(SANITIZE),clang)
+  PACKAGES += clang
+endif
 # The peers of `make compare` (tests/bench/compare/), only for that target.
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
