@@ -34,6 +34,15 @@
 #include <thread>
 #include <vector>
 
+// AddressSanitizer: GCC defines __SANITIZE_ADDRESS__, clang answers __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define SOA_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SOA_TEST_ASAN 1
+#endif
+#endif
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -505,7 +514,8 @@ TEST(cli_robustness, OperationalInverseInertiaIsJMinvJStarOfTheVerbsOutputs) {
     const std::size_t nv = Minv.size();
     const Outcome kin = soa(s, {"kinematics", scene});
     ASSERT_EQ(kin.rc, 0) << kin.err;
-    for (const auto& body : json::parse(kin.out)["bodies"].items()) {
+    const json kinematics = json::parse(kin.out);  // items() is a view: the document must live
+    for (const auto& body : kinematics["bodies"].items()) {
       const Outcome jac = soa(s, {"jacobian", scene, "--body", body.key()});
       ASSERT_EQ(jac.rc, 0) << jac.err;
       const auto J = matrix_of(json::parse(jac.out)["J"]);
@@ -617,7 +627,7 @@ TEST(cli_robustness, DenseCrossChecksAreSkippedAboveTheirSizeAndSaySo) {
 }
 
 TEST(cli_robustness, OutOfMemoryIsOneLineNamingWhatWasBeingBuilt) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(SOA_TEST_ASAN)
   GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit";
 #else
   Scratch s;

@@ -21,7 +21,10 @@ namespace soa::test {
 constexpr int kCases = 1000;
 constexpr unsigned kSeed = 20261125u;
 
-/// Random spatial quantities in precision S, from a fixed seed.
+/// Random spatial quantities in precision S, from a fixed seed. Each draw is its own statement:
+/// the order in which a call's arguments are evaluated is unspecified (GCC goes right to left,
+/// clang left to right), and one seed must give the same cases under every compiler. The
+/// order kept is the one GCC's builds drew in, last component first.
 template <class S>
 class Random {
  public:
@@ -29,14 +32,24 @@ class Random {
 
   S uniform(S lo, S hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
   S normal() { return S(std::normal_distribution<double>()(gen_)); }
-  Vec3<S> vec3() { return Vec3<S>(normal(), normal(), normal()); }
+  Vec3<S> vec3() {
+    const S z = normal(), y = normal(), x = normal();
+    return Vec3<S>(x, y, z);
+  }
   Vec3<S> unit3() { return vec3().normalized(); }
   /// A rotation uniform on SO(3) (from a normalized 4-vector of normals).
-  Mat3<S> rotation() { return UnitQuaternionT<S>(vec3(), normal()).matrix(); }
-  PhiT<S> phi() { return PhiT<S>(rotation(), vec3()); }
-  VelocityT<S> velocity() { return VelocityT<S>(vec3(), vec3()); }
-  AccelerationT<S> acceleration() { return AccelerationT<S>(vec3(), vec3()); }
-  ForceT<S> force() { return ForceT<S>(vec3(), vec3()); }
+  Mat3<S> rotation() {
+    const S w = normal();
+    const Vec3<S> v = vec3();
+    return UnitQuaternionT<S>(v, w).matrix();
+  }
+  PhiT<S> phi() {
+    const Vec3<S> p = vec3();
+    return PhiT<S>(rotation(), p);
+  }
+  VelocityT<S> velocity() { return VelocityT<S>(pair()); }
+  AccelerationT<S> acceleration() { return AccelerationT<S>(pair()); }
+  ForceT<S> force() { return ForceT<S>(pair()); }
   /// A physically valid body: mass in [0.5, 5], principal moments that satisfy the triangle
   /// inequality, a random principal frame and centre of mass.
   SpatialInertiaT<S> inertia() {
@@ -50,6 +63,14 @@ class Random {
   std::mt19937_64& engine() { return gen_; }
 
  private:
+  /// A 6-vector of two 3-vectors, the second drawn first.
+  Vec6<S> pair() {
+    const Vec3<S> b = vec3(), a = vec3();
+    Vec6<S> v;
+    v << a, b;
+    return v;
+  }
+
   std::mt19937_64 gen_;
 };
 

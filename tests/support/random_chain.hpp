@@ -26,7 +26,8 @@ BodyT<S> random_body(Random<S>& rnd, int i, HingeType type, const ChainOptions& 
   BodyT<S> b;
   b.name = "body" + std::to_string(i);
   b.M = rnd.inertia();
-  b.placement = PoseT<S>(rnd.rotation(), rnd.vec3());
+  const Vec3<S> position = rnd.vec3();  // drawn before the rotation, as in Random
+  b.placement = PoseT<S>(rnd.rotation(), position);
   b.hinge.type = type;
   if (i == 0 && b.hinge.type == HingeType::Locked) b.hinge.type = HingeType::Revolute;
   b.hinge.axis = rnd.unit3();
