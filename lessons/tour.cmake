@@ -1,56 +1,25 @@
-# Runs the lesson programs in order (cmake -P): one line per lesson with its checks and the
-# files it wrote; the full output of each lesson is kept in its folder as output.txt.
-# A lesson that wrote 3D viewers lists them in its folder's views.txt, one per line:
+# Runs the lesson programs in order, then the labs (cmake -P): one line per program with its
+# checks; the full output of each is kept in its folder as output.txt.
+# A program that wrote 3D viewers lists them in its folder's views.txt, one per line:
 # "<folder> <query>" (lessons/common/viewer.hpp); each gets a still image <folder>.png, taken
 # by CHROMIUM (lib/view/screenshot.cmake) at that query, for the notes.
-# LESSONS: entries NN-topic|lesson program[|report program...], "-" for a lesson program not
-# written yet. Report programs (lessons/NN-topic/<name>/, built as lessonNN_<name>) run
-# first, into the lesson's freshly cleared folder, each output kept as <name>_output.txt;
-# then the lesson program.
+# LESSONS: entries NN-topic|lesson program, run into OUT/NN-topic/.
+# LABS: entries name|lab program (lessons/labs/<name>/, built as lab_<name>), run in this
+# order into OUT/labs/<name>/, each line with its run time.
 string(REPLACE "," ";" lessons "${LESSONS}")
+string(REPLACE "," ";" labs "${LABS}")
 include("${CMAKE_CURRENT_LIST_DIR}/../lib/view/screenshot.cmake")
 file(MAKE_DIRECTORY "${OUT}")
 set(failed 0)
-message("")
-foreach(entry IN LISTS lessons)
-  string(REPLACE "|" ";" parts "${entry}")
-  list(GET parts 0 dir)
-  list(GET parts 1 exe)
-  set(reports "")
-  list(LENGTH parts n_parts)
-  if(n_parts GREATER 2)
-    list(SUBLIST parts 2 -1 reports)
-  endif()
-  set(out_dir "${OUT}/${dir}")
-  file(REMOVE_RECURSE "${out_dir}")  # no stale figure outlives the lesson that drew it
+
+# run_program(<exe> <out_dir> <closing-var> <err-var>): runs exe into its freshly cleared
+# out_dir (no stale figure outlives the program that drew it), keeps its output as
+# out_dir/output.txt, takes the still image of each viewer it wrote; sets <closing-var> to
+# its closing line "N passed, M failed" (or why there is none), <err-var> to its stderr when
+# it failed, and `failed` (in the caller's scope) when it or a still image failed.
+function(run_program exe out_dir closing_var err_var)
+  file(REMOVE_RECURSE "${out_dir}")
   file(MAKE_DIRECTORY "${out_dir}")
-  string(REPLACE "-" " " topic "${dir}")
-  string(SUBSTRING "${topic}" 3 -1 topic)
-  string(SUBSTRING "${dir}" 0 2 nn)
-  foreach(report IN LISTS reports)
-    get_filename_component(name "${report}" NAME_WE)
-    string(REGEX REPLACE "^lesson[0-9][0-9]_" "" name "${name}")
-    string(TIMESTAMP t0 "%s")
-    execute_process(COMMAND "${report}" "${out_dir}" OUTPUT_VARIABLE out ERROR_VARIABLE err
-                    RESULT_VARIABLE rc)
-    string(TIMESTAMP t1 "%s")
-    math(EXPR seconds "${t1} - ${t0}")
-    file(WRITE "${out_dir}/${name}_output.txt" "${out}${err}")
-    string(REGEX MATCH "[0-9]+ passed, [0-9]+ failed" closing "${out}")
-    if(NOT closing)
-      set(closing "no closing line (exit ${rc})")
-    endif()
-    if(NOT rc EQUAL 0)
-      set(failed 1)
-    endif()
-    message("Lesson ${nn}  ${name}: ${closing} in ${seconds} s  -> ${out_dir}/${name}_output.txt")
-    if(NOT rc EQUAL 0)
-      message("  ${err}")
-    endif()
-  endforeach()
-  if(exe STREQUAL "-")  # only the timing program so far
-    continue()
-  endif()
   execute_process(COMMAND "${exe}" "${out_dir}" OUTPUT_VARIABLE out ERROR_VARIABLE err
                   RESULT_VARIABLE rc)
   file(WRITE "${out_dir}/output.txt" "${out}${err}")
@@ -58,10 +27,11 @@ foreach(entry IN LISTS lessons)
   if(NOT closing)
     set(closing "no closing line (exit ${rc})")
   endif()
-  if(NOT rc EQUAL 0)
-    set(failed 1)
+  if(rc EQUAL 0)
+    set(err "")
+  else()
+    set(failed 1 PARENT_SCOPE)
   endif()
-  # The still image of each viewer the lesson wrote.
   if(EXISTS "${out_dir}/views.txt")
     file(STRINGS "${out_dir}/views.txt" views)
     foreach(view IN LISTS views)
@@ -71,26 +41,54 @@ foreach(entry IN LISTS lessons)
       if(NOT CHROMIUM)
         message("  ${name}.png: no still image, Chromium was not found when CMake configured "
                 "(Debian package chromium; make run installs it)")
-        set(failed 1)
+        set(failed 1 PARENT_SCOPE)
         continue()
       endif()
       soa_view_screenshot("${CHROMIUM}" "${out_dir}/${name}/index.html" "${query}"
                           "${out_dir}/${name}.png" "1000,620" why)
       if(why)
         message("  ${name}.png: ${why}")
-        set(failed 1)
+        set(failed 1 PARENT_SCOPE)
       endif()
     endforeach()
   endif()
+  set(${closing_var} "${closing}" PARENT_SCOPE)
+  set(${err_var} "${err}" PARENT_SCOPE)
+endfunction()
+
+message("")
+foreach(entry IN LISTS lessons)
+  string(REPLACE "|" ";" parts "${entry}")
+  list(GET parts 0 dir)
+  list(GET parts 1 exe)
+  set(out_dir "${OUT}/${dir}")
+  run_program("${exe}" "${out_dir}" closing err)
+  string(REPLACE "-" " " topic "${dir}")
+  string(SUBSTRING "${topic}" 3 -1 topic)
+  string(SUBSTRING "${dir}" 0 2 nn)
   file(GLOB written RELATIVE "${out_dir}" "${out_dir}/*")
   list(SORT written)
   string(REPLACE ";" ", " written "${written}")
   message("Lesson ${nn}  ${topic}: ${closing}  -> ${out_dir}/ (${written})")
-  if(NOT rc EQUAL 0)
+  if(err)
+    message("  ${err}")
+  endif()
+endforeach()
+foreach(entry IN LISTS labs)
+  string(REPLACE "|" ";" parts "${entry}")
+  list(GET parts 0 name)
+  list(GET parts 1 exe)
+  set(out_dir "${OUT}/labs/${name}")
+  string(TIMESTAMP t0 "%s")
+  run_program("${exe}" "${out_dir}" closing err)
+  string(TIMESTAMP t1 "%s")
+  math(EXPR seconds "${t1} - ${t0}")
+  message("Lab  ${name}: ${closing} in ${seconds} s  -> ${out_dir}/output.txt")
+  if(err)
     message("  ${err}")
   endif()
 endforeach()
 message("")
 if(failed)
-  message(FATAL_ERROR "a lesson failed its checks; see its output.txt")
+  message(FATAL_ERROR "a lesson or lab failed its checks; see its output.txt")
 endif()

@@ -829,7 +829,7 @@ int main(int argc, char** argv) {
 
   /// ## 11. A 7-joint arm: the path of its tool
   ///
-  /// A concrete robot: the default scene `scenes/arm7.json`, a seven-joint revolute arm whose
+  /// A concrete robot: the default scene `lib/scenes/arm7.json`, a seven-joint revolute arm whose
   /// gripper sits on a locked hinge, merged into the last link as in section 3 (the scene
   /// files are described on the "Scene files" page of the notes). If the scene cannot be
   /// read, the same arm without the gripper is built in code. Its tool frame F sits 0.1 m out along the
@@ -846,7 +846,7 @@ int main(int argc, char** argv) {
   /// configurations, has rank 6, so it has a null space. A joint velocity \f$\beta_0\f$ in it
   /// moves the arm but not the tool, \f$J\beta_0 = 0\f$: the arm's **self-motion**.
   checks.section("11. A 7-joint arm: the path of its tool");
-  const std::string scene_path = std::string(SOA_LESSON_SOURCE_DIR) + "/scenes/arm7.json";
+  const std::string scene_path = std::string(SOA_SCENE_DIR) + "/arm7.json";
   soa::Model arm;
   soa::Scene arm_scene;  // for the viewer: the file's bodies, the gripper included
   bool from_scene = false;
@@ -866,7 +866,7 @@ int main(int argc, char** argv) {
     arm_scene = soa::lesson::scene_of(arm, "7-joint arm");
   }
   std::printf("  arm from %s: %d bodies, nq = %d, nv = %d\n",
-              from_scene ? "scenes/arm7.json" : "code", arm.n(), arm.nq(), arm.nv());
+              from_scene ? "lib/scenes/arm7.json" : "code", arm.n(), arm.nq(), arm.nv());
   // Joint motion: every scalar hinge from the base out gets its entries of bend (theta_s)
   // and d_theta (Delta theta).
   const double d_theta[7] = {1.2, -0.4, 0.6, 0.7, -0.8, 0.5, 1.0};

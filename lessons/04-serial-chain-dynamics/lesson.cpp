@@ -126,7 +126,7 @@ Model small_chain() {
   return m;
 }
 
-/// The 7-joint arm of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/arm7.json`) built
+/// The 7-joint arm of lesson 3 (`lib/scenes/arm7.json`) built
 /// in code, should its scene file not load: seven revolute joints with axes z, y, z, y, z,
 /// y, z (a common redundant-arm layout), 1.26 m from the base to the flange, masses from
 /// 4 kg at the shoulder to 0.3 kg at the flange, and a 0.9 kg gripper on a locked hinge
@@ -156,13 +156,13 @@ Model arm7_in_code() {
 /// not load or has a hinge with \f$\dot\theta \ne \beta\f$ (section 10 needs
 /// \f$\dot\theta = \beta\f$); as a scene, for the viewer.
 soa::Scene arm7(std::string& source) {
-  const std::string path = SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/arm7.json";
+  const std::string path = SOA_SCENE_DIR "/arm7.json";
   try {
     soa::Scene scene = soa::load_scene(path);
     bool plain = scene.model.n() > 0;
     for (const Body& b : scene.model.bodies()) plain = plain && b.hinge.nq() == b.hinge.nv();
     if (plain) {
-      source = "scene file lessons/03-serial-chain-kinematics/scenes/arm7.json";
+      source = "scene file lib/scenes/arm7.json";
       return scene;
     }
     source = "built in code (the scene file has a hinge with theta_dot != beta)";
@@ -1088,7 +1088,7 @@ int main(int argc, char** argv) {
 
   /// ## 12. A real arm holding a payload: the Franka Emika Panda
   ///
-  /// The Panda of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/panda.urdf`: Franka's
+  /// The Panda of lesson 3 (`lib/scenes/panda.urdf`: Franka's
   /// kinematics, the inertial parameters identified by Gaz et al. 2019, Franka's joint limits
   /// and rated torques; the header of the file cites them) holds a payload still,
   /// \f$\beta = 0\f$, \f$\dot\beta = 0\f$, at the pose \f$q = (0, -0.3, 0, -2.2, 0, 2.0,

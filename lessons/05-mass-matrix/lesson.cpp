@@ -117,12 +117,10 @@ Model every_hinge_chain(State& x) {
   return m;
 }
 
-/// A scene of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/NAME.json`).
+/// A scene of lesson 3 (`lib/scenes/NAME.json`).
 Model scene(const std::string& name, std::string& error) {
   try {
-    return soa::load_scene(SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/" + name +
-                           ".json")
-        .model;
+    return soa::load_scene(SOA_SCENE_DIR "/" + name + ".json").model;
   } catch (const std::exception& e) {
     error = e.what();
     return Model{};
@@ -515,7 +513,7 @@ int main(int argc, char** argv) {
 
   /// ## 6. A real arm along a motion: the Universal Robots UR5e
   ///
-  /// The UR5e of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/ur5e.urdf`: UR's
+  /// The UR5e of lesson 3 (`lib/scenes/ur5e.urdf`: UR's
   /// published kinematics, masses, centres of mass and inertias; the header of the file cites
   /// them), six revolute joints, moves along a smooth path of the joints, \f$s\f$ from 0 to 1,
   /// \f[ q_i(s) = q_{0,i} + A_i \sin(2\pi\nu_i s), \f]

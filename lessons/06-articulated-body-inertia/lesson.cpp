@@ -97,15 +97,14 @@ Model small_chain() {
   });
 }
 
-/// The 50-link chain of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/chain50.json`),
+/// The 50-link chain of lesson 3 (`lib/scenes/chain50.json`),
 /// or the same chain built in code should the file not load: 50 links of 0.1 m and 0.2 kg,
 /// revolute hinges about x and y in turn.
 Model chain50(std::string& source, VecX& theta) {
-  const std::string path =
-      SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/chain50.json";
+  const std::string path = SOA_SCENE_DIR "/chain50.json";
   try {
     soa::Scene scene = soa::load_scene(path);
-    source = "scene file lessons/03-serial-chain-kinematics/scenes/chain50.json";
+    source = "scene file lib/scenes/chain50.json";
     theta = scene.state.theta;
     return scene.model;
   } catch (const std::exception& e) {

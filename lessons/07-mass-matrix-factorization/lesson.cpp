@@ -75,12 +75,11 @@ const double kEps = soa::eps<double>();
 
 /// ## Helpers
 ///
-/// A scene of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/NAME.json`), with the
+/// A scene of lesson 3 (`lib/scenes/NAME.json`), with the
 /// state the file gives.
 bool scene(const std::string& name, Model& m, State& x, std::string& error) {
   try {
-    const soa::Scene s = soa::load_scene(
-        SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/" + name + ".json");
+    const soa::Scene s = soa::load_scene(SOA_SCENE_DIR "/" + name + ".json");
     m = s.model;
     x = s.state;
     return true;

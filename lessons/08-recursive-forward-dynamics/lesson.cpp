@@ -243,10 +243,9 @@ double rel(const VecX& a, const VecX& b, double floor = 1e-300) {
   return (a - b).norm() / std::max(b.norm(), floor);
 }
 
-/// A default scene of lesson 3, `lessons/03-serial-chain-kinematics/scenes/NAME.json`.
+/// A default scene of lesson 3, `lib/scenes/NAME.json`.
 soa::Scene scene(const std::string& name) {
-  return soa::load_scene(SOA_LESSON_SOURCE_DIR "/../03-serial-chain-kinematics/scenes/" + name +
-                         ".json");
+  return soa::load_scene(SOA_SCENE_DIR "/" + name + ".json");
 }
 
 /// The three sweeps of the articulated body algorithm written out as in section 2, with
@@ -920,7 +919,7 @@ int main(int argc, char** argv) {
 
   /// ## 8. A real arm falling: the Franka Emika Panda
   ///
-  /// The Panda of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/panda.urdf`: Franka's
+  /// The Panda of lesson 3 (`lib/scenes/panda.urdf`: Franka's
   /// kinematics and the inertial parameters identified by Gaz et al. 2019; the header of the
   /// file cites them) is released at rest from the pose \f$q = (0, -0.3, 0, -2.2, 0, 2.0,
   /// 0.8)\f$ rad (Franka's joints 1 to 7, from the base) with its motors off, \f$T = 0\f$, and

@@ -1,5 +1,5 @@
 /// \file
-/// The scene files of lesson 3 (`lessons/03-serial-chain-kinematics/scenes/`), loaded by the
+/// The default scenes (`lib/scenes/`, shown in lesson 3), loaded by the
 /// lessons that compute on them, as a check: a file that does not load is a failed check
 /// naming its problem, not a crash of the lecture.
 #pragma once
@@ -13,10 +13,10 @@
 
 namespace soa::lesson {
 
-/// The path of lesson 3's scene \p file ("arm7.json", "panda.urdf"). Needs
-/// SOA_LESSON_SOURCE_DIR, which every lesson target defines.
+/// The path of the default scene \p file ("arm7.json", "panda.urdf"). Needs SOA_SCENE_DIR,
+/// which soa_support gives every lesson target.
 inline std::string lesson3_scene(const std::string& file) {
-  return std::string(SOA_LESSON_SOURCE_DIR) + "/../03-serial-chain-kinematics/scenes/" + file;
+  return std::string(SOA_SCENE_DIR) + "/" + file;
 }
 
 /// Lesson 3's scene \p file with \p nv coordinates, checked in \p checks ("panda.urdf loads

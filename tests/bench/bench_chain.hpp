@@ -1,48 +1,12 @@
-// The benchmark chain: a revolute chain of n links with alternating axes and a random state
-// from a fixed seed, as the peers' benchmarks use (lessons 4-8).
+// The benchmark chain (soa::bench::Chain, lib/support/benchmark_chain.hpp) and the counters of
+// a benchmark on it.
 #pragma once
 
 #include <benchmark/benchmark.h>
 
-#include <random>
-#include <string>
-#include <vector>
-
-#include "soa/chain.hpp"
+#include "benchmark_chain.hpp"
 
 namespace soa::bench {
-
-struct Chain {
-  soa::Model model;
-  soa::State x;
-  soa::VecX<double> beta_dot;  ///< random accelerations (inverse dynamics)
-  soa::VecX<double> T;         ///< random hinge forces (forward dynamics)
-  soa::ExternalForces<double> f_ext;
-
-  Chain(int n, bool gravity) {
-    std::mt19937 g(11);
-    std::normal_distribution<double> N;
-    std::vector<soa::Body> bodies(n);
-    for (int i = 0; i < n; ++i) {
-      soa::Body& b = bodies[i];
-      b.name = "link" + std::to_string(i);
-      b.M = soa::SpatialInertia::from_cm(
-          1.0 + 0.1 * (i % 3), soa::Vec3<double>(0.15, 0, 0.01),
-          soa::Mat3<double>(soa::Vec3<double>(0.01, 0.02, 0.02).asDiagonal()));
-      b.placement =
-          soa::Pose(soa::Mat3<double>::Identity(), soa::Vec3<double>(i == 0 ? 0 : 0.3, 0, 0));
-      b.hinge.type = soa::HingeType::Revolute;
-      b.hinge.axis = i % 2 ? soa::Vec3<double>::UnitY() : soa::Vec3<double>::UnitZ();
-    }
-    model = soa::Model::from_base_first(bodies);
-    if (gravity) model.gravity = soa::Vec3<double>(0, 0, -9.81);
-    x = soa::State::rest(model);
-    beta_dot.resize(model.nv());
-    T.resize(model.nv());
-    for (int i = 0; i < model.nq(); ++i) x.theta[i] = N(g);
-    for (int i = 0; i < model.nv(); ++i) x.beta[i] = N(g), beta_dot[i] = N(g), T[i] = N(g);
-  }
-};
 
 /// Counters: the chain's size and the time per joint.
 inline void report(benchmark::State& state, int n) {

@@ -14,7 +14,7 @@
 /// - inverse_dynamics(), forward_dynamics() (both storages) and update_phi() build every
 ///   \f$\phi(k+1,k)\f$ bitwise from the batch;
 /// - the dynamics with the batch against the path it replaced (one std::sin and std::cos per
-///   joint, double arithmetic: the counting scalar, tests/support/counted_scalar.hpp), within
+///   joint, double arithmetic: the counting scalar, lib/support/counted_scalar.hpp), within
 ///   ε n of the problem's scale, on random chains of every hinge type.
 #include <algorithm>
 #include <cmath>

@@ -49,7 +49,7 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 std::string scene_path(const std::string& name) {
-  return std::string(SOA_SOURCE_DIR) + "/lessons/03-serial-chain-kinematics/scenes/" + name;
+  return std::string(SOA_SCENE_DIR) + "/" + name;
 }
 std::string test_scene(const std::string& name) {
   return std::string(SOA_SOURCE_DIR) + "/tests/scenes/" + name;

@@ -14,9 +14,9 @@
 
 namespace soa::test {
 
-/// lessons/03-serial-chain-kinematics/scenes/NAME.
+/// lib/scenes/NAME.
 inline std::string default_scene(const std::string& name) {
-  return std::string(SOA_SOURCE_DIR) + "/lessons/03-serial-chain-kinematics/scenes/" + name;
+  return std::string(SOA_SCENE_DIR) + "/" + name;
 }
 /// tests/scenes/bad/NAME.
 inline std::string bad_scene(const std::string& name) {

@@ -30,7 +30,7 @@
 #include <thread>
 #include <vector>
 
-#include "report.hpp"  // lessons/common: cpu_model(), time_text()
+#include "report.hpp"  // lib/support: cpu_model(), time_text()
 
 namespace fs = std::filesystem;
 using nlohmann::json;

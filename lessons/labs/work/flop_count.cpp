@@ -1,7 +1,8 @@
-// Lesson 8's flop counts, run by `make run` after the timing report:
-//   lesson08_work OUTDIR
+// The work lab: the flops of lesson 8's algorithms, run by `make run` after the timing lab
+// into build/course/labs/work/ (`make test` runs it with --quick, ctest lab.work):
+//   lab_work OUTDIR [--quick]
 // The work of each algorithm, counted from the code as it runs: the algorithms called on
-// the scalar soa::test::Counted (tests/support/counted_scalar.hpp), a double that counts
+// the scalar soa::test::Counted (lib/support/counted_scalar.hpp), a double that counts
 // every +, -, *, / done on it (and sqrt, sin, cos apart). Eigen has no vector type for it,
 // so every kernel runs coefficient by coefficient: a vectorized multiply of the double build
 // counts once per lane.
@@ -11,11 +12,13 @@
 //    off, and oblique axes with rotated placements: l8_flops.md.
 // 2. The O(N^2) mass matrix (carried columns; products hoisted) and M^-1 as a N^2 + b N,
 //    fitted exactly on 8, 16, 24 bodies and checked on 32: l8_flops_n2.md.
-// 3. The four solvers of the timing report on its revolute chains (N = 7, 50, 200, 1000),
-//    counted per call, beside the times that report measured (l8_work_precision.csv in
-//    OUTDIR, written by lesson08_timing just before): l8_flops_rate.md, and the summary the
-//    notes quote, l8_flops_summary.md.
+// 3. The four solvers of the timing lab on its revolute chains (N = 7, 50, 200, 1000),
+//    counted per call, beside the times that lab measured (l8_work_precision.csv in the
+//    timing lab's folder beside OUTDIR, OUTDIR/../timing/): l8_flops_rate.md, and the
+//    summary the notes quote, l8_flops_summary.md.
 // Everything also in l8_flops.csv.
+// --quick: section 3 on N = 7 and 50 only (the timing lab's --quick chains); sections 1
+// and 2 in full, seconds already.
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +29,7 @@
 #include <vector>
 
 #include "../timing/problems.hpp"
+#include "args.hpp"
 #include "checklist.hpp"
 #include "flop_count.hpp"
 #include "report.hpp"
@@ -72,7 +76,7 @@ std::string quadratic_text(const Quadratic& q) {
          count_text(std::abs(q.b), q.exact) + " N";
 }
 
-/// The median CPU time per call (ns) of lesson08_timing, by "method/precision/N".
+/// The median CPU time per call (ns) of lab_timing, by "method/precision/N".
 std::map<std::string, double> read_times(const fs::path& csv) {
   std::map<std::string, double> t;
   std::ifstream in(csv);
@@ -93,12 +97,8 @@ std::map<std::string, double> read_times(const fs::path& csv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUTDIR\n", argv[0]);
-    return 2;
-  }
-  const fs::path out = argv[1];
-  fs::create_directories(out);
+  bool quick = false;
+  const fs::path out = soa::lesson::output_dir(argc, argv, &quick);
   soa::lesson::Checklist checks;
   std::ofstream csv(out / "l8_flops.csv");
   csv << "algorithm,hinge,chain,flops_per_body,sqrt_per_body,sincos_per_body,other_per_body,"
@@ -211,13 +211,13 @@ int main(int argc, char** argv) {
                fast_no_dearer);
 
   // 3. The timing report's solvers on its chains, beside its times.
-  checks.section("Flops per call beside the measured time (lesson08_timing's chains)");
-  const fs::path times_csv = out / "l8_work_precision.csv";
+  checks.section("Flops per call beside the measured time (lab_timing's chains)");
+  const fs::path times_csv = fs::canonical(out).parent_path() / "timing" / "l8_work_precision.csv";
   const bool have_times = fs::exists(times_csv);
   const std::map<std::string, double> ns = read_times(times_csv);
   std::printf("  times: %s\n", have_times ? times_csv.c_str()
-                                          : "none (l8_work_precision.csv not in OUTDIR: run "
-                                            "lesson08_timing first)");
+                                          : "none (no l8_work_precision.csv in the timing lab's "
+                                            "folder beside OUTDIR: run lab_timing first)");
   const timing::Method methods[] = {timing::Method::ABA, timing::Method::CRB, timing::Method::Minv,
                                     timing::Method::MinvUpsilon};
   std::ofstream md3(out / "l8_flops_rate.md");
@@ -226,9 +226,9 @@ int main(int argc, char** argv) {
          "(T - C): flops per call | flops per ns |\n"
       << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   double worst_agreement = 0;
-  const int N_big = 1000;
+  const int N_big = quick ? 50 : 1000;
   double aba_big_flops = NAN, aba_big_ns = NAN;  // per call at N_big
-  for (const int N : {7, 50, 200, N_big}) {
+  for (const int N : quick ? std::vector<int>{7, N_big} : std::vector<int>{7, 50, 200, N_big}) {
     const timing::Problem<double> pd = timing::benchmark_chain(N);
     const timing::Problem<Counted> pc = timing::cast<Counted>(pd);
     md3 << "| " << N;
@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
     md3 << " |\n";
   }
   if (!have_times)
-    md3 << "\n*No times: `l8_work_precision.csv` was not in the output folder (lesson08_timing "
+    md3 << "\n*No times: `l8_work_precision.csv` was not in the timing lab's folder (lab_timing "
            "writes it).*\n";
   md3.close();
   // The summary the notes quote: the revolute counts and the rate at N_big.

@@ -1,6 +1,6 @@
-// Lesson 8's error-against-run-time report, run by `make run` before the lesson program (`make
-// test` does not build it; --quick runs a short version by hand):
-//   lesson08_timing OUTDIR [--quick]
+// The timing lab: error against run time of lesson 8's forward dynamics, run by `make run`
+// into build/course/labs/timing/ (`make test` runs it with --quick, ctest lab.timing):
+//   lab_timing OUTDIR [--quick]
 // 1. Revolute benchmark chains, N = 1 ... 2000: the time per call (Google Benchmark, median
 //    CPU time of repeated runs) and the forward error against the long double articulated
 //    body result of (a) the O(N) articulated body algorithm, (b) CRB + LDLT, (c) the O(N^2)
@@ -466,7 +466,7 @@ int main(int argc, char** argv) {
   const double cross_f = crossover(rows, cfg.Ns, "float", cross_text_f);
   {
     std::ofstream marks(out / "l8_marks.gp");  // read by l8_time.gp
-    marks << "# written by lesson08_timing: the ABA / CRB + LDLT crossover N (0: none)\n"
+    marks << "# written by lab_timing: the ABA / CRB + LDLT crossover N (0: none)\n"
           << "cross_double = " << (cross_d > 0 ? num(cross_d, "%.3f") : "0") << "\n"
           << "cross_float = " << (cross_f > 0 ? num(cross_f, "%.3f") : "0") << "\n";
   }

@@ -86,7 +86,7 @@ inline void wp_figure(Checklist& checks, const std::filesystem::path& out, const
   std::ofstream csv(out / "l8_sim_wp_stiff_own.csv");
   csv << "scene,method,h,tol,steps,evaluations,seconds,error,energy_drift,diagnostic\n";
   std::ofstream gp(out / "l8_sim_wp_stiff_own.gp");
-  gp << "# written by lesson08_simulation: the curves of l8_sim_wp_stiff_own.png\n"
+  gp << "# written by lab_simulation: the curves of l8_sim_wp_stiff_own.png\n"
      << "title_text = '" << p.title << ", from its own start, T = " << num(p.t_end, "%g")
      << " s'\ncvode_built = " << (kHaveCvode ? 1 : 0) << "\nmethods = '";
   std::vector<std::vector<Point>> curves;

@@ -1,6 +1,6 @@
 /// \file
-/// Numbers, CSV fields and times as the report programs and lessons write them in their
-/// CSV files and markdown tables.
+/// Numbers, CSV fields, times and the CPU's name as the lessons, the labs and the speed report
+/// write them in their CSV files and markdown tables.
 #pragma once
 
 #include <cmath>

@@ -3,7 +3,7 @@
 /// chains of the scalar soa::test::Counted, with the benchmarks' set-up, the operations counted
 /// per call. Per body: the difference between chains of n and 2n bodies, so that what a call
 /// does once drops out. Used by the flop-count test (tests/dynamics/flop_count_test.cpp) and
-/// lesson 8's report (lessons/08-.../work/).
+/// the work lab (lessons/labs/work/).
 #pragma once
 
 #include <cmath>
@@ -22,7 +22,7 @@ namespace soa::test {
 enum class Axes { Coordinate, General };
 
 /// A chain of \p n bodies with one hinge type, its state, accelerations and hinge forces:
-/// the benchmark chain (tests/bench/bench_chain.hpp: links of 0.3 m, masses 1, 1.1, 1.2,
+/// the benchmark chain (benchmark_chain.hpp: links of 0.3 m, masses 1, 1.1, 1.2,
 /// gravity, a random state from a fixed seed) with any hinge type. Coordinate axes
 /// alternate z and y as the benchmark's (a universal hinge's second axis is the other one);
 /// general axes alternate two fixed oblique unit vectors. The numbers are drawn in double

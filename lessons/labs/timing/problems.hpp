@@ -1,7 +1,7 @@
 /// \file
-/// The problems of lesson 8's error-against-run-time report: the benchmark chain of `make
-/// bench` and the extreme chains of lesson 6 with joint rates, built in double and cast to
-/// float and long double; the four ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$ and
+/// The problems of the timing lab, error against run time of lesson 8's forward dynamics: the
+/// benchmark chain of `make bench` and the extreme chains of lesson 6 with joint rates, built
+/// in double and cast to float and long double; the four ways to solve \f$\mathcal M\dot\beta = T - \mathcal C\f$ and
 /// the errors of their results.
 #pragma once
 
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmark_chain.hpp"
 #include "report.hpp"
 #include "soa/chain.hpp"
 #include "soa/chain/mass_matrix_inverse_upsilon.hpp"
@@ -46,35 +47,12 @@ Problem<S> cast(const Problem<double>& p) {
   return q;
 }
 
-/// The benchmark chain of `make bench` (tests/bench/bench_chain.hpp, the same numbers drawn
-/// from the same seed): n revolute links of 0.3 m with axes alternating z and y, masses 1,
-/// 1.1, 1.2, gravity, a random pose, random rates and random hinge forces.
+/// The benchmark chain of `make bench` (soa::bench::Chain): n revolute links of 0.3 m with
+/// axes alternating z and y, masses 1, 1.1, 1.2, gravity, a random pose, random rates and
+/// random hinge forces.
 inline Problem<double> benchmark_chain(int n) {
-  std::mt19937 g(11);
-  std::normal_distribution<double> N;
-  std::vector<soa::Body> bodies(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    soa::Body& b = bodies[std::size_t(i)];
-    b.name = "link" + std::to_string(i);
-    b.M = soa::SpatialInertia::from_cm(
-        1.0 + 0.1 * (i % 3), soa::Vec3<double>(0.15, 0, 0.01),
-        soa::Mat3<double>(soa::Vec3<double>(0.01, 0.02, 0.02).asDiagonal()));
-    b.placement =
-        soa::Pose(soa::Mat3<double>::Identity(), soa::Vec3<double>(i == 0 ? 0 : 0.3, 0, 0));
-    b.hinge.type = soa::HingeType::Revolute;
-    b.hinge.axis = i % 2 ? soa::Vec3<double>::UnitY() : soa::Vec3<double>::UnitZ();
-  }
-  Problem<double> p{soa::Model::from_base_first(std::move(bodies)), {}, {}};
-  p.m.gravity = soa::Vec3<double>(0, 0, -9.81);
-  p.x = soa::State::rest(p.m);
-  p.T.resize(p.m.nv());
-  for (int i = 0; i < p.m.nq(); ++i) p.x.theta[i] = N(g);
-  for (int i = 0; i < p.m.nv(); ++i) {
-    p.x.beta[i] = N(g);
-    (void)N(g);  // the benchmark's beta_dot (inverse dynamics)
-    p.T[i] = N(g);
-  }
-  return p;
+  soa::bench::Chain c(n, true);
+  return Problem<double>{std::move(c.model), std::move(c.x), std::move(c.T)};
 }
 
 /// One extreme chain (lesson 6, section 7, with rates): n revolute hinges, every axis along

@@ -12,7 +12,7 @@
 
 namespace soa::lesson::sim {
 
-/// A default scene (`lessons/03-serial-chain-kinematics/scenes/NAME.json`) as a problem over
+/// A default scene (`lib/scenes/NAME.json`) as a problem over
 /// [0, \p t_end], from the state the file gives.
 inline SimProblem default_scene(const std::string& name, const std::string& title, double t_end) {
   const soa::Scene sc = soa::load_scene(std::string(SOA_SCENE_DIR) + "/" + name + ".json");

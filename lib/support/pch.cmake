@@ -7,8 +7,8 @@
 # says so if not).
 
 # The optimization of every check target: -O1 even in Release. They run for seconds, while
-# -O3 on Eigen-heavy test code doubles the build. The library, the `soa` command, the lesson
-# reports and the benchmarks keep the build type's flags.
+# -O3 on Eigen-heavy test code doubles the build. The library, the `soa` command, the labs
+# and the benchmarks keep the build type's flags.
 set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
 
 # `make exercises` compiles the student's code (the `plain` targets, with their precompiled

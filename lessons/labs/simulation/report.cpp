@@ -1,6 +1,6 @@
-// Lesson 8's simulation report, run by `make run` before lesson 8's program (`make test` does
-// not build it):
-//   lesson08_simulation OUTPUT_DIR [--quick]
+// The simulation lab: the integrators of lesson 8's forward dynamics, run by `make run` into
+// build/course/labs/simulation/ (`make test` runs it with --quick, ctest lab.simulation):
+//   lab_simulation OUTPUT_DIR [--quick]
 // 1. Error against run time: on each default scene (double pendulum, seven-joint arm,
 //    50-link chain) and a stiff-spring chain, every integrator over a sweep of steps (or
 //    tolerances, dopri5), final-state error against a reference solution, the order of
@@ -203,7 +203,7 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
   std::ofstream csv(out / "l8_sim_work_precision.csv");
   csv << "scene,method,h,tol,steps,evaluations,seconds,error,energy_drift,diagnostic\n";
   std::ofstream orders_gp(out / "l8_sim_orders.gp");
-  orders_gp << "# written by lesson08_simulation: the fitted orders, o_SCENE_METHODINDEX\n";
+  orders_gp << "# written by lab_simulation: the fitted orders, o_SCENE_METHODINDEX\n";
   std::ofstream md(out / "l8_sim_orders.md");
   md << "| Scene | horizon | reference agreement |";
   for (Integrator m : kMethods) md << " " << soa::integrator_name(m) << " |";

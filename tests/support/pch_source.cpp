@@ -1,1 +1,0 @@
-// The translation unit that builds a precompiled header (tests/support/pch.cmake).
