@@ -1,11 +1,13 @@
 # The build step of `make docs` (cmake -P, run by the `docs` target after the lesson tour):
-#   1. copy the figures the tour drew (COURSE/NN-topic/*.png|svg) into FIGURES (IMAGE_PATH),
-#      and the tables it wrote (COURSE/NN-topic/*.md) into TABLES (EXAMPLE_PATH), where a
-#      page includes one by `\includedoc name.md`;
+#   1. copy the figures the tour drew (COURSE/NN-topic/*.png|svg, COURSE/labs/<name>/*.png|svg)
+#      into FIGURES (IMAGE_PATH), and the tables it wrote (COURSE/NN-topic/*.md,
+#      COURSE/labs/<name>/*.md) into TABLES (EXAMPLE_PATH), where a page includes one by
+#      `\includedoc name.md`;
 #   2. run Doxygen on DOXYFILE into HTML (a fresh folder; any warning fails);
 #   3. copy the MathJax subset the pages need from MATHJAX into HTML/mathjax (links
 #      dereferenced, so the folder can be copied or served anywhere);
-#   4. copy the 3D viewers the tour wrote (COURSE/NN-topic/<name>/index.html, docs/viewer.md)
+#   4. copy the 3D viewers the tour wrote (COURSE/NN-topic/<name>/index.html, the same under
+#      COURSE/labs/<lab>/; docs/viewer.md)
 #      into HTML/viewers/<name>/, where the lesson pages embed them;
 #   5. check that no page loads anything from the network.
 # Variables: DOXYGEN, DOXYFILE, HTML, COURSE, FIGURES, TABLES, MATHJAX; BENCH (optional),
@@ -20,13 +22,14 @@ endforeach()
 # 1. Figures: one flat folder, so `\image html name.png` finds every lesson's figures.
 file(REMOVE_RECURSE "${FIGURES}")
 file(MAKE_DIRECTORY "${FIGURES}")
-file(GLOB figures "${COURSE}/[0-9][0-9]-*/*.png" "${COURSE}/[0-9][0-9]-*/*.svg")
+file(GLOB figures "${COURSE}/[0-9][0-9]-*/*.png" "${COURSE}/[0-9][0-9]-*/*.svg"
+     "${COURSE}/labs/*/*.png" "${COURSE}/labs/*/*.svg")
 set(seen "")
 foreach(fig IN LISTS figures)
   get_filename_component(name "${fig}" NAME)
   if(name IN_LIST seen)
-    message(FATAL_ERROR "docs: two lessons wrote a figure named ${name} under ${COURSE}; "
-                        "figure names must be unique across lessons")
+    message(FATAL_ERROR "docs: two programs wrote a figure named ${name} under ${COURSE}; "
+                        "figure names must be unique across lessons and labs")
   endif()
   list(APPEND seen "${name}")
   file(COPY_FILE "${fig}" "${FIGURES}/${name}")
@@ -37,13 +40,13 @@ endforeach()
 # they may hold Markdown but no Doxygen formulas.
 file(REMOVE_RECURSE "${TABLES}")
 file(MAKE_DIRECTORY "${TABLES}")
-file(GLOB tables "${COURSE}/[0-9][0-9]-*/*.md")
+file(GLOB tables "${COURSE}/[0-9][0-9]-*/*.md" "${COURSE}/labs/*/*.md")
 set(seen "")
 foreach(table IN LISTS tables)
   get_filename_component(name "${table}" NAME)
   if(name IN_LIST seen)
-    message(FATAL_ERROR "docs: two lessons wrote a table named ${name} under ${COURSE}; "
-                        "table names must be unique across lessons")
+    message(FATAL_ERROR "docs: two programs wrote a table named ${name} under ${COURSE}; "
+                        "table names must be unique across lessons and labs")
   endif()
   list(APPEND seen "${name}")
   file(COPY_FILE "${table}" "${TABLES}/${name}")
@@ -104,14 +107,14 @@ endforeach()
 
 # 4. The viewers: each a folder with its page, its data and three.js; the pages show them in
 # an <iframe src="viewers/<name>/index.html">, beside their still image (a figure above).
-file(GLOB viewer_pages "${COURSE}/[0-9][0-9]-*/*/index.html")
+file(GLOB viewer_pages "${COURSE}/[0-9][0-9]-*/*/index.html" "${COURSE}/labs/*/*/index.html")
 set(seen "")
 foreach(page IN LISTS viewer_pages)
   get_filename_component(dir "${page}" DIRECTORY)
   get_filename_component(name "${dir}" NAME)
   if(name IN_LIST seen)
-    message(FATAL_ERROR "docs: two lessons wrote a viewer named ${name} under ${COURSE}; "
-                        "viewer names must be unique across lessons")
+    message(FATAL_ERROR "docs: two programs wrote a viewer named ${name} under ${COURSE}; "
+                        "viewer names must be unique across lessons and labs")
   endif()
   list(APPEND seen "${name}")
   file(COPY "${dir}/" DESTINATION "${HTML}/viewers/${name}")
