@@ -330,7 +330,12 @@ void work_precision_section(Checklist& checks, const fs::path& out, bool quick, 
       checks.check(p.name + ": cvode reaches t_end at every tolerance" +
                        (all_ok ? std::string() : " (" + cvode_pts.back().r.diagnostic + ")"),
                    all_ok);
-      if (loose && tight) {
+      /// With --quick the sweep stops at a run time of milliseconds, which the machine's load
+      /// sets: the two are printed, not checked.
+      if (loose && tight && quick) {
+        std::printf("    cvode: %.1e at tol %.0e, %.1e at tol %.0e (not checked with --quick)\n",
+                    loose->error, loose->tol, tight->error, tight->tol);
+      } else if (loose && tight) {
         checks.check(p.name + ": cvode error falls as its tolerance tightens (" +
                          num(loose->error, "%.1e") + " at tol " + num(loose->tol, "%.0e") + ", " +
                          num(tight->error, "%.1e") + " at " + num(tight->tol, "%.0e") + ")",
