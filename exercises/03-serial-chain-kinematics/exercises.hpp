@@ -58,7 +58,8 @@ Matrix6X joint_map(const Hinge& hinge, const VecX<double>& theta);
 /// "Velocities: the scatter recursion"):
 /// \f[ V(k) = \phi^*(k+1,k)\, V(k+1) + H^*(k)\beta(k), \qquad k = n, \dots, 1, \qquad
 ///     V(n+1) = 0 . \f]
-/// Reproduces the velocity part of soa::update_velocities (do not call it).
+/// Reproduces the velocity part of soa::reference::velocities() (its fast form:
+/// soa::update_velocities); call neither.
 std::vector<Velocity> scatter_velocities(const std::vector<Phi>& phi,
                                          const std::vector<Velocity>& dV);
 
@@ -94,7 +95,7 @@ MatX<double> phi_operator(const std::vector<Phi>& phi);
 /// `ws` holds them: `ws.pose[i-1]` is \f${}^I T_{O_i}\f$); hinge i's columns are
 /// `m.body(i).v_offset` ... `+ m.body(i).hinge.nv() - 1`, its coordinates start at
 /// `theta.data() + m.body(i).q_offset`, and `hinge.H_star(...)` gives \f$H^*(i)\f$.
-/// Reproduces soa::jacobian: do not call soa::jacobian.
+/// Reproduces soa::reference::jacobian() (its fast form: soa::jacobian); call neither.
 Matrix6X frame_jacobian(const Model& m, const VecX<double>& theta, int k, const Pose& frame);
 
 /// **Exercise 3.6: the Coriolis term \f$a(k)\f$.**

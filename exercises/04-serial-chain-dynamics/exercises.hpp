@@ -46,7 +46,8 @@ struct Gathered {
 /// with \f$M(k)\f$ = `m.body(k).M` and \f$H(k)\f$ applied by
 /// `m.body(k).hinge.H_times(theta.data() + q_offset, f, T.data() + v_offset)` (the hinge
 /// map may depend on \p theta). Mind the index: \f$\phi(k,k-1)\f$ is `phi[k-2]`. Reproduces the
-/// tip-to-base sweep of soa::inverse_dynamics (which you must not call).
+/// tip-to-base sweep of soa::reference::inverse_dynamics() (its fast form:
+/// soa::inverse_dynamics); call neither.
 Gathered gather_forces(const Model& m, const VecX<double>& theta, const std::vector<Phi>& phi,
                        const std::vector<Acceleration>& alpha, const std::vector<Force>& b);
 

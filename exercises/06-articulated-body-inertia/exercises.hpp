@@ -50,7 +50,8 @@ struct RiccatiStep {
 /// \f[ P(k) = \phi(k,k-1)\,P^+(k-1)\,\phi^*(k,k-1) + M(k), \quad D(k) = H(k)P(k)H^*(k), \f]
 /// \f[ G(k) = P(k)H^*(k)D^{-1}(k), \quad P^+(k) = P(k) - G(k)D(k)G^*(k). \f]
 /// \f$\phi P^+ \phi^*\f$ may use `phi.matrix()` or soa::transform_symmetric (exercise 6.4
-/// does it by blocks). Do not call soa::articulated_inertias or soa::riccati_step.
+/// does it by blocks). Do not call soa::reference::articulated_inertias, nor its fast form
+/// soa::articulated_inertias or soa::riccati_step.
 RiccatiStep riccati_step(const Mat6& P_plus_prev, const Phi& phi, const SpatialInertia& M,
                          const MatX<double>& H_star);
 
@@ -70,7 +71,8 @@ Mat6 tau_bar(const Mat6& P, const MatX<double>& H_star);
 /// base at \p theta and return \f$D(k)\f$ at entry k−1 (size n): the inertia hinge k feels
 /// about its axis with every hinge outboard of it free. \f$\phi(k,k-1)\f$ from
 /// soa::update_phi and \f$\phi P \phi^*\f$ from soa::transform_symmetric are allowed. Do not
-/// call soa::articulated_inertias or soa::riccati_step.
+/// call soa::reference::articulated_inertias, nor its fast form soa::articulated_inertias or
+/// soa::riccati_step.
 VecX<double> revolute_D(const Model& m, const VecX<double>& theta);
 
 /// **Exercise 6.4: \f$\phi P \phi^*\f$ without the 6x6 \f$\phi\f$.**

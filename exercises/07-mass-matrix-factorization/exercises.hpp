@@ -97,8 +97,9 @@ std::vector<MatX> minv_diagonal(const Model& m, const State& x);
 /// \f$\epsilon(k) = b(k) - H(k)z(k)\f$, \f$\nu(k) = D^{-1}(k)\epsilon(k)\f$,
 /// \f$z^+(k) = z(k) + G(k)\epsilon(k)\f$; base to tip
 /// \f$\alpha^+(k) = \phi^*(k+1,k)\alpha(k+1)\f$, \f$y(k) = \nu(k) - G^*(k)\alpha^+(k)\f$,
-/// \f$\alpha(k) = \alpha^+(k) + H^*(k)y(k)\f$. Do not call soa::mass_matrix_inverse,
-/// soa::forward_dynamics, soa::mass_matrix_crb, soa::OperatorsT or soa::InnovationsOperatorsT.
+/// \f$\alpha(k) = \alpha^+(k) + H^*(k)y(k)\f$: soa::reference::articulated_solve(). Do not call
+/// it, soa::mass_matrix_inverse, soa::forward_dynamics, soa::mass_matrix_crb, soa::OperatorsT
+/// or soa::InnovationsOperatorsT.
 VecX solve(const Model& m, const State& x, const VecX& b);
 
 /// **Exercise 7.5: the determinant of the mass matrix.**

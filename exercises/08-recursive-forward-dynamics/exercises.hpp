@@ -51,7 +51,7 @@ struct TipToBase {
 ///     \quad \nu(k) = \epsilon(k)/D(k), \quad z^+(k) = z(k) + G(k)\,\epsilon(k), \f]
 /// with \f$z^+(0) = 0\f$ and \f$b(k)\f$ the gyroscopic term of lesson 2. \f$P, D, G\f$ from
 /// soa::articulated_inertias and \f$a(k)\f$ from soa::update_velocities are allowed.
-/// Do not call soa::forward_dynamics.
+/// Do not call soa::reference::forward_dynamics() or its fast form soa::forward_dynamics.
 TipToBase tip_to_base(const Model& m, const State& x, const VecX<double>& T);
 
 /// **Exercise 8.2: the base-to-tip sweep.**
@@ -63,7 +63,7 @@ TipToBase tip_to_base(const Model& m, const State& x, const VecX<double>& T);
 /// (size n) with \f$\alpha(k)\f$, for k = n ... 1 (lesson 8, section 2, "The Riccati sweep"):
 /// \f[ \alpha^+(k) = \phi^*(k+1,k)\,\alpha(k+1), \quad \dot\beta(k) = \nu(k) -
 ///     G^*(k)\,\alpha^+(k), \quad \alpha(k) = \alpha^+(k) + H^*(k)\dot\beta(k) + a(k). \f]
-/// Do not call soa::forward_dynamics.
+/// Do not call soa::reference::forward_dynamics() or its fast form soa::forward_dynamics.
 VecX<double> base_to_tip(const Model& m, const State& x, const Workspace& ws,
                          const Articulated& art, const std::vector<VecX<double>>& nu,
                          const Acceleration& alpha_base, std::vector<Acceleration>& alpha);

@@ -460,7 +460,9 @@ int main(int argc, char** argv) {
   /// \f[ V(k) = \phi^*(k+1,k)\, V(k+1) + H^*(k)\,\beta(k), \qquad k = n, \dots, 1, \qquad
   ///     V(n+1) = 0 . \f]
   /// \f$V(O_{k+1}, O_k) = V(O_k^+, O_k)\f$ because \f$O_k^+\f$ is fixed on body k+1. The loop
-  /// below is the whole algorithm; soa::update_velocities() runs it in the library. Both are
+  /// below is the whole algorithm, as soa::reference::velocities() writes it
+  /// (lib/include/soa/reference/kinematics.hpp); its fast form soa::update_velocities() runs
+  /// it in the library. Both are
   /// checked against the velocities of the poses of section 5 along the motion \f$\theta(t)\f$
   /// (slides 32 and 35, by finite differences).
   ///
@@ -773,8 +775,9 @@ int main(int argc, char** argv) {
   /// Block row k of \f$\phi^*\f$ holds \f$\phi^*(i,k)\f$ at column i for \f$i \ge k\f$, and
   /// \f$\phi(i,k)\,\phi(O_k,F) = \phi(O_i,F)\f$ (slide 45), so column block i of J is
   /// \f$\phi^*(O_i, F)\, H^*(i)\f$ for the hinges inboard of F (\f$i \ge k\f$) and zero for
-  /// the others: outboard hinges do not move F. soa::jacobian() computes these columns from
-  /// the poses. Dually, a force \f$F_F\f$ at F needs the hinge forces \f$T = H\phi B F_F =
+  /// the others: outboard hinges do not move F. soa::reference::jacobian()
+  /// (lib/include/soa/reference/jacobian.hpp) computes them so; its fast form soa::jacobian()
+  /// computes them from the poses. Dually, a force \f$F_F\f$ at F needs the hinge forces \f$T = H\phi B F_F =
   /// J^* F_F\f$: the gather of section 8 with \f$g = B F_F\f$.
   ///
   /// Differentiating \f$V(F) = J\beta\f$ in the inertial frame:

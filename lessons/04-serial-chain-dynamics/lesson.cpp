@@ -172,7 +172,9 @@ soa::Scene arm7(std::string& source) {
   return soa::lesson::scene_of(arm7_in_code(), "7-joint arm");
 }
 
-/// The hinge forces by the library's Newton–Euler inverse dynamics, soa::inverse_dynamics.
+/// The hinge forces by the library's Newton–Euler inverse dynamics, soa::inverse_dynamics (the
+/// fast form of soa::reference::inverse_dynamics(), lib/include/soa/reference/
+/// inverse_dynamics.hpp, which is the one to read).
 VecX inverse_dynamics(const Model& m, const State& x, const VecX& beta_dot,
                       const soa::ExternalForces<double>& f_ext = {}) {
   Workspace ws(m);
@@ -314,7 +316,8 @@ int main(int argc, char** argv) {
   /// \f$\alpha(k) = \phi^*(k+1,k)\alpha(k+1) + H^*(k)\dot\beta(k) + a(k)\f$ (with
   /// \f$V(n+1) = 0\f$ and, section 5, \f$\alpha(n+1) = [0; -g]\f$); tip to base the
   /// forces above. We write the tip-to-base sweep here and compare it with the library's
-  /// soa::inverse_dynamics.
+  /// soa::inverse_dynamics, the fast form of soa::reference::inverse_dynamics()
+  /// (lib/include/soa/reference/inverse_dynamics.hpp).
   ///
   /// Now do exercise 4.1 (the gather sweep) and 4.2 (both sweeps of a revolute chain, with
   /// gravity as in section 5); exercise 4.8 derives the Coriolis term \f$a(k)\f$ of a helical

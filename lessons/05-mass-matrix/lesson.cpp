@@ -246,7 +246,9 @@ int main(int argc, char** argv) {
   /// \f$H\tilde\phi R H^*\f$ strictly lower block triangular, so
   /// \f[ \mathcal M(k,k) = H(k) R(k) H^*(k), \qquad
   ///     \mathcal M(i,j) = H(i)\,\phi(i,j)\,R(j)\,H^*(j) = \mathcal M^*(j,i), \quad i > j . \f]
-  /// The CRB algorithm (soa::mass_matrix_crb): for each hinge j, form the n_j force columns
+  /// The CRB algorithm (soa::reference::mass_matrix(), lib/include/soa/reference/composite.hpp;
+  /// its fast forms soa::mass_matrix_crb and soa::mass_matrix_inertial): for each hinge j, form
+  /// the n_j force columns
   /// \f$F = R(j)H^*(j)\f$, then walk inboard, \f$F \leftarrow \phi(i,i-1) F\f$, and project,
   /// \f$\mathcal M(i,j) = H(i) F\f$. Every hinge type enters only through \f$H(k)\f$ (dense
   /// \f$H^*(k)\f$ for the columns, `H_times` for the rows), so the same loop serves the free,

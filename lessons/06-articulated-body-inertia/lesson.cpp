@@ -232,8 +232,11 @@ int main(int argc, char** argv) {
   /// Lyapunov recursion of \f$R\f$ (lesson 5). \f$D(k)\f$ is the inertia hinge k feels
   /// along its own free directions. \f$\phi P\phi^*\f$ for a symmetric \f$P\f$ is computed
   /// from \f$R\f$ and \f$\tilde\ell\f$ without the 6x6 \f$\phi\f$ (soa::transform_symmetric).
-  /// API: soa::articulated_inertias(); the \f$z\f$, \f$\epsilon\f$, \f$\nu\f$, \f$z^+\f$,
-  /// \f$\alpha^+\f$ sweeps are the forward dynamics of lesson 8, soa::forward_dynamics().
+  /// To read: soa::reference::articulated_inertias() (lib/include/soa/reference/articulated.hpp),
+  /// these equations line by line; soa::articulated_inertias(), which this program and the
+  /// command line run, is its fast form. The \f$z\f$, \f$\epsilon\f$, \f$\nu\f$, \f$z^+\f$,
+  /// \f$\alpha^+\f$ sweeps are the forward dynamics of lesson 8,
+  /// soa::reference::forward_dynamics().
   ///
   /// *Now do* exercises 6.1 (one Riccati step), 6.4 (\f$\phi P\phi^*\f$ by blocks, without the
   /// 6x6 \f$\phi\f$) and 6.3 (the recursion down a revolute chain):

@@ -542,7 +542,9 @@ int main(int argc, char** argv) {
   /// the velocity and gravity terms: \f$O(N)\f$ per column. With \f$T = e_j\f$ for every
   /// hinge coordinate j they give \f$\mathcal M^{-1}\f$ column by column, \f$O(N^2)\f$ in all,
   /// with the Riccati recursion run once and no \f$\mathcal M\f$, no dense operator and no
-  /// 6x6 \f$\phi\f$ formed. soa::mass_matrix_inverse() runs all columns at once and uses the
+  /// 6x6 \f$\phi\f$ formed: soa::reference::mass_matrix_inverse() and
+  /// soa::reference::mass_matrix_inverse_times() (lib/include/soa/reference/) as written here.
+  /// Their fast form soa::mass_matrix_inverse() runs all columns at once and uses the
   /// structure: in the tip-to-base pass only the columns of the hinges outboard of k are
   /// non-zero, in the base-to-tip pass only rows k..1 are needed (the rest by symmetry).
   /// From the command line: `soa mass-matrix --inverse SCENE.json`.

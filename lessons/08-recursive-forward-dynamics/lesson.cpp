@@ -189,8 +189,10 @@ struct MassAndBias {
   VecX solve(const VecX& T) const { return M.ldlt().solve(T - C); }
 };
 
-/// The library's forward dynamics, soa::forward_dynamics, returning \f$\dot\beta\f$ (and,
-/// when asked, its per-body results and workspace).
+/// The library's forward dynamics, soa::forward_dynamics (the fast form of
+/// soa::reference::forward_dynamics(), lib/include/soa/reference/forward_dynamics.hpp, which
+/// is the one to read), returning \f$\dot\beta\f$ (and, when asked, its per-body results and
+/// workspace).
 VecX forward(const Model& m, const State& x, const VecX& T, const Forces& f_ext,
              soa::ForwardDynamics* fd_out = nullptr, Workspace* ws_out = nullptr) {
   Workspace ws(m);
@@ -251,8 +253,9 @@ soa::Scene scene(const std::string& name) {
 /// The three sweeps of the articulated body algorithm written out as in section 2, with
 /// dense 6x6 matrices (\f$\phi\f$ by `phi.matrix()`, \f$H^*(k)\f$ by `H_star`) so that the
 /// code reads like the formulas; \f$P\f$, \f$D\f$, \f$G\f$ from soa::articulated_inertias()
-/// (lesson 6). The library's soa::forward_dynamics does the same without any 6x6
-/// \f$\phi\f$, fused into fewer loops.
+/// (lesson 6). soa::reference::forward_dynamics() (lib/include/soa/reference/
+/// forward_dynamics.hpp) is the same with spatial types; its fast form soa::forward_dynamics,
+/// which the command line runs, does it without any 6x6 \f$\phi\f$, fused into fewer loops.
 struct Sweeps {
   std::vector<Vec6> z, z_plus, alpha_plus, alpha;
   std::vector<VecX> eps, nu;
@@ -450,9 +453,10 @@ int main(int argc, char** argv) {
   /// singular as long as every \f$D(k)\f$ is invertible (lesson 6, section 5).
   ///
   /// The sweeps are written out in `articulated_body_sweeps()` above with dense 6x6
-  /// matrices; the library's soa::forward_dynamics fuses the Riccati recursion into sweep 2,
-  /// works on the 3-vector parts and never forms a 6x6 \f$\phi\f$. Both against the
-  /// reference of section 1:
+  /// matrices, as soa::reference::forward_dynamics() writes them with spatial types; its fast
+  /// form soa::forward_dynamics fuses the Riccati recursion into sweep 2, works on the
+  /// 3-vector parts and never forms a 6x6 \f$\phi\f$. Both against the reference of
+  /// section 1:
   ///
   /// Now do exercises 8.1 (sweep 2 of a revolute chain), 8.2 (sweep 3) and 8.3 (the whole
   /// algorithm, the Riccati recursion included); then 8.6, a forward dynamics with one bug to

@@ -205,7 +205,7 @@ Emit forward_dynamics(const Scene& scene, const State& x, const VecX<double>& ta
   {
     Workspace ws = Workspace::lazy();  // no poses
     {
-      ForwardDynamics fd = ForwardDynamics::lean(m);  // 56 bytes a body, not the full storage
+      ForwardDynamics fd = ForwardDynamics::lean(m);  // G(k) and nu(k) only, not the full storage
       soa::forward_dynamics(m, x, tau, scene.f_ext, ws, fd, *qdd);
     }
     // The round trip through inverse dynamics (O(N)): T(q, qd, qdd) = tau within rounding,

@@ -23,8 +23,8 @@ inline constexpr int kDenseCheckMax = 2000;
 inline constexpr int kMassMatrixMax = 20000;
 
 /// The most frames a viewer may hold (--frames): each holds every body's pose, V and f, 19
-/// numbers a body (50 bodies: 7.6 kB of memory a frame; at the limit, data.js passes a
-/// gigabyte: its size a frame is in docs/scenes.md).
+/// numbers a body (at the limit, data.js passes a gigabyte: its size a frame is in
+/// docs/scenes.md).
 inline constexpr std::size_t kMaxFrames = 100000;
 
 /// A viewer to write (view --out DIR, simulate --view DIR).

@@ -16,24 +16,11 @@ namespace {
 
 using soa::test::Random;
 
-// Something that allocates, out of the optimizer's sight.
-__attribute__((noinline)) void benchmark_vector() {
-  std::vector<double>* v = new std::vector<double>(100);
-  delete v;
-}
-
-// Allocations made by \p f, run twice (the first call may size outputs).
-template <class F>
-long allocations(F&& f) {
-  f();
-  const long before = soa::test::allocations();
-  f();
-  return soa::test::allocations() - before;
-}
+using soa::test::allocations_in;
 
 TEST(dynamics_Allocation, NoneInTheRecursions) {
   // The counter sees allocations at all (else this test could not fail).
-  ASSERT_GT(allocations([] { benchmark_vector(); }), 0);
+  ASSERT_GT(allocations_in([] { soa::test::allocate_something(); }), 0);
   Random<double> rnd(43);
   soa::test::ChainOptions opt;
   opt.gravity = true;
@@ -45,31 +32,31 @@ TEST(dynamics_Allocation, NoneInTheRecursions) {
     const soa::ExternalForces<double> f_ext = soa::test::random_forces(rnd, m);
     soa::Workspace ws(m);
     soa::VecX<double> out(m.nv());
-    EXPECT_EQ(allocations([&] { soa::inverse_dynamics(m, x, v, f_ext, ws, out); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::inverse_dynamics(m, x, v, f_ext, ws, out); }), 0)
         << "inverse_dynamics, case " << i;
     soa::ForwardDynamics fd(m);
-    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, fd, out); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::forward_dynamics(m, x, v, f_ext, ws, fd, out); }), 0)
         << "forward_dynamics, case " << i;
     soa::ForwardDynamics lean = soa::ForwardDynamics::lean(m);
-    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, ws, lean, out); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::forward_dynamics(m, x, v, f_ext, ws, lean, out); }), 0)
         << "forward_dynamics (lean storage), case " << i;
     soa::Workspace lazy = soa::Workspace::lazy();  // sized by its first use, then none
-    EXPECT_EQ(allocations([&] { soa::forward_dynamics(m, x, v, f_ext, lazy, lean, out); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::forward_dynamics(m, x, v, f_ext, lazy, lean, out); }), 0)
         << "forward_dynamics (lazy workspace), case " << i;
-    EXPECT_EQ(allocations([&] { soa::inverse_dynamics(m, x, v, f_ext, lazy, out); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::inverse_dynamics(m, x, v, f_ext, lazy, out); }), 0)
         << "inverse_dynamics (lazy workspace), case " << i;
     soa::MassMatrixInverse w(m);
     soa::MatX<double> M(m.nv(), m.nv());
-    EXPECT_EQ(allocations([&] { soa::mass_matrix_inverse(m, x, ws, w, M); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::mass_matrix_inverse(m, x, ws, w, M); }), 0)
         << "mass_matrix_inverse, case " << i;
     std::vector<soa::SpatialInertia> R(std::size_t(m.n()));
-    EXPECT_EQ(allocations([&] { soa::mass_matrix_crb(m, x, ws, R, M); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::mass_matrix_crb(m, x, ws, R, M); }), 0)
         << "mass_matrix_crb, case " << i;
     soa::MassMatrixInertial mi(m);
-    EXPECT_EQ(allocations([&] { soa::mass_matrix_inertial(m, x, ws, mi, M); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::mass_matrix_inertial(m, x, ws, mi, M); }), 0)
         << "mass_matrix_inertial, case " << i;
     soa::Articulated art(m);
-    EXPECT_EQ(allocations([&] { soa::articulated_inertias(m, x, ws, art); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::articulated_inertias(m, x, ws, art); }), 0)
         << "articulated_inertias, case " << i;
   }
 }
@@ -94,7 +81,7 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
     double h = 1e-3;
     bool ok = true;
     // Each call with another h refactorizes; every few a Jacobian may be refreshed.
-    EXPECT_EQ(allocations([&] { ok = stepper.esdirk(0.0, h *= 1.1, x0, x1, err) && ok; }), 0)
+    EXPECT_EQ(allocations_in([&] { ok = stepper.esdirk(0.0, h *= 1.1, x0, x1, err) && ok; }), 0)
         << "esdirk, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
     // radau5: steps that follow each other (the last step's polynomial starts Newton), a
@@ -102,7 +89,7 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
     soa::Stepper radau(sys);
     soa::State xa = x0, xb = x0;
     double t = 0, hr = 1e-3;
-    EXPECT_EQ(allocations([&] {
+    EXPECT_EQ(allocations_in([&] {
                 for (int k = 0; k < 3; ++k) {
                   ok = radau.radau5(t, hr, xa, xb, err) && ok;
                   ok = radau.radau5(t, hr * 0.5, xa, xb, err) && ok;  // retried smaller
@@ -114,7 +101,7 @@ TEST(dynamics_Allocation, NoneInAnImplicitStep) {
         << "radau5, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
     soa::Stepper midpoint(sys);
-    EXPECT_EQ(allocations([&] { ok = midpoint.implicit_midpoint(0.0, 1e-3, x0, x1) && ok; }), 0)
+    EXPECT_EQ(allocations_in([&] { ok = midpoint.implicit_midpoint(0.0, 1e-3, x0, x1) && ok; }), 0)
         << "implicit_midpoint, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
   }
@@ -139,15 +126,15 @@ TEST(dynamics_Allocation, NoneInAVariationalStep) {
     soa::ChainSystem sys(m, soa::test::random_forces(rnd, m));
     soa::VecX<double> p(m.nv()), g(m.nv()), b(m.nv());
     soa::Workspace ws(m);
-    EXPECT_EQ(allocations([&] { soa::kinetic_gradient(m, x0, ws, p, g); }), 0)
+    EXPECT_EQ(allocations_in([&] { soa::kinetic_gradient(m, x0, ws, p, g); }), 0)
         << "kinetic_gradient, case " << i;
-    EXPECT_EQ(allocations([&] { sys.velocity(x0, p, b); }), 0) << "velocity, case " << i;
-    EXPECT_EQ(allocations([&] { sys.momentum_rate(0.0, x0, g); }), 0)
+    EXPECT_EQ(allocations_in([&] { sys.velocity(x0, p, b); }), 0) << "velocity, case " << i;
+    EXPECT_EQ(allocations_in([&] { sys.momentum_rate(0.0, x0, g); }), 0)
         << "momentum_rate, case " << i;
     soa::Stepper stepper(sys);
     soa::State x1 = x0;
     bool ok = true;
-    EXPECT_EQ(allocations([&] { ok = stepper.variational(0.0, 1e-3, x0, x1) && ok; }), 0)
+    EXPECT_EQ(allocations_in([&] { ok = stepper.variational(0.0, 1e-3, x0, x1) && ok; }), 0)
         << "variational, case " << i;
     EXPECT_TRUE(ok) << "case " << i;
   }
@@ -168,8 +155,8 @@ TEST(dynamics_Allocation, NoneInAStiffnessCheck) {
     soa::Stepper stepper(sys);
     soa::DominantEigenvalueT<double> dominant(m.nv());
     std::complex<double> l;
-    EXPECT_EQ(allocations([&] { l = dominant(stepper, 0.0, x, 24); }), 0) << "first, case " << i;
-    EXPECT_EQ(allocations([&] { l = dominant(stepper, 0.0, x, 4); }), 0) << "later, case " << i;
+    EXPECT_EQ(allocations_in([&] { l = dominant(stepper, 0.0, x, 24); }), 0) << "first, case " << i;
+    EXPECT_EQ(allocations_in([&] { l = dominant(stepper, 0.0, x, 4); }), 0) << "later, case " << i;
     EXPECT_GT(std::abs(l), 0) << "case " << i;
   }
 }

@@ -3,7 +3,8 @@
 // the fixed seed. Case i has gravity when i is odd, springs and dampers unless i % 3 == 0,
 // external forces unless i % 4 == 0, is at rest when i % 5 == 0, and when i % 3 == 1 has
 // every hinge axis, placement rotation and offset along a coordinate axis (the fast paths).
-// Each test reports its worst residual relative to eps times the size and conditioning.
+// Each test reports its worst residual relative to eps times the size and conditioning; the
+// last one counts the reference functions' heap allocations.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <vector>
 
+#include "count_allocations.hpp"
 #include "property.hpp"
 #include "random_chain.hpp"
 #include "soa/chain.hpp"
@@ -245,6 +247,37 @@ TEST(mass_matrix_inverse_times, ONOnAVector) {
                       return (out - out_ref).norm() /
                              (c.m.n() * kEps * condition(c, rw) * Minv_ref.norm() * c.T.norm());
                     });
+}
+
+// No reference function allocates once its workspace (ref::Workspace) and its outputs are
+// sized: the project's rule of no allocation per call, which the reference tier keeps too.
+TEST(allocation, NoneInTheReferenceFunctions) {
+  ASSERT_GT(soa::test::allocations_in([] { soa::test::allocate_something(); }), 0);
+  Random<double> rnd;
+  for (int i = 0; i < 60; ++i) {
+    const Case c = draw(rnd, i);
+    const soa::Model& m = c.m;
+    ref::Workspace rw(m);
+    VecX out(m.nv());
+    MatX M(m.nv(), m.nv());
+    Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, m.nv());
+    const auto none = [&](const char* what, auto&& f) {
+      EXPECT_EQ(soa::test::allocations_in(f), 0) << what << ", case " << i;
+    };
+    none("joint_transforms", [&] { ref::joint_transforms(m, c.x.theta, rw); });
+    none("velocities", [&] { ref::velocities(m, c.x, rw); });
+    none("kinematics", [&] { ref::kinematics(m, c.x, c.beta_dot, rw); });
+    none("inverse_dynamics", [&] { ref::inverse_dynamics(m, c.x, c.beta_dot, c.f_ext, rw, out); });
+    none("mass_matrix", [&] { ref::mass_matrix(m, c.x, rw, M); });
+    none("jacobian", [&] { ref::jacobian(m, c.x.theta, rw, c.body, c.frame, J); });
+    none("articulated_inertias", [&] { ref::articulated_inertias(m, c.x, rw); });
+    none("forward_dynamics", [&] { ref::forward_dynamics(m, c.x, c.T, c.f_ext, rw, out); });
+    none("innovations_factor_times", [&] { ref::innovations_factor_times(m, c.x, c.T, rw, out); });
+    none("articulated_solve", [&] { ref::articulated_solve(m, c.x, c.T, rw, out); });
+    none("mass_matrix_inverse_times",
+         [&] { ref::mass_matrix_inverse_times(m, c.x, c.T, rw, out); });
+    none("mass_matrix_inverse", [&] { ref::mass_matrix_inverse(m, c.x, rw, M); });
+  }
 }
 
 }  // namespace

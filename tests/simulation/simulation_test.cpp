@@ -679,8 +679,8 @@ TEST(simulation_Esdirk, ErrorFollowsTheTolerance) {
 
 // A stiff, damped spring from its own start (0.1 rad on k = 1e8): esdirk4 reaches t_end at
 // an average step far above RK4's stability bound 2.83 / |lambda| (100 x; radau5 50 x: it
-// follows the transient in shorter, cheaper steps, 1739 evaluations against 2214 when
-// written), and agrees with a tight run; RK4 at that average step blows up.
+// follows the transient in shorter, cheaper steps), and agrees with a tight run; RK4 at that
+// average step blows up.
 TEST(simulation_Esdirk, StiffSpringFromItsOwnStart) {
   soa::Body b;
   b.name = "stiff";

@@ -286,8 +286,8 @@ FreeBodyState random_state(Random<double>& rnd) {
 // Torque-free, frame away from the CM: the kinetic energy and the inertial momentum h(O)
 // are conserved up to the integration error. RK4's global error over a horizon T is
 // ~ T |omega| (|omega| h)^4 times a constant; the tolerance is T |omega| (|omega| h)^4
-// relative, plus rounding, per body (measured: energy ~1e-3 and momentum ~0.1 of it). An
-// integrator of order 2 or 3 would exceed it by orders of magnitude (h = 0.01).
+// relative (the constant taken as 1), plus rounding, per body. An integrator of order 2 or 3
+// would exceed it by orders of magnitude (h = 0.01).
 TEST(rigid_body_FreeBody, Rk4ConservesEnergyAndMomentum) {
   Random<double> rnd;
   Worst energy("RK4 energy drift / bound");

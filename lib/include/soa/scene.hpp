@@ -86,7 +86,7 @@ struct Scene {
         return identity;
       }
     };
-    std::shared_ptr<const Locked> locked_;       // only locked bodies have one: 56 bytes a frame
+    std::shared_ptr<const Locked> locked_;       // only locked bodies have one (a frame each)
     std::shared_ptr<const HingeLimits> limits_;  // only hinges given limits or friction
   };
   /// Every body of the file, in the order of the file, locked ones included.

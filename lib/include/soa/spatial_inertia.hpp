@@ -102,27 +102,30 @@ SpatialInertiaT<S> transform_about(const PhiT<S>& phi_xy, const SpatialInertiaT<
   const Mat3<S>& R = phi_xy.R();
   const Vec3<S>& l = phi_xy.l();
   Vec3<S> h;
-  Mat3<S> Jp;  // J' = R J(y) R^*, lower triangle i >= j (the rest unused)
-  const bool plane = detail::with_plane_axis(axis, [&](auto ax) {
-    constexpr int I = decltype(ax)::value, J = I == 2 ? 0 : I + 1, K = J == 2 ? 0 : J + 1;
+  Mat3<S> J_rot;  // J' = R J(y) R^*, lower triangle i >= j (the rest unused)
+  // A rotation about a coordinate axis mixes h and J in its plane only (index names as in
+  // soa/detail/plane.hpp): the general products less those with R's exact zeros and ones.
+  const bool plane = detail::with_plane_axis(axis, [&](auto axis_c) {
+    constexpr int Axis = decltype(axis_c)::value, U = Axis == 2 ? 0 : Axis + 1,
+                  W = U == 2 ? 0 : U + 1;
     const Vec3<S>& hy = M_y.h();
-    h[I] = hy[I];
-    h[J] = R(J, J) * hy[J] + R(J, K) * hy[K];
-    h[K] = R(K, J) * hy[J] + R(K, K) * hy[K];
-    Jp = detail::plane_rotate<I>(R, M_y.J(), true);
+    h[Axis] = hy[Axis];
+    h[U] = R(U, U) * hy[U] + R(U, W) * hy[W];
+    h[W] = R(W, U) * hy[U] + R(W, W) * hy[W];
+    J_rot = detail::plane_rotate<Axis>(R, M_y.J(), true);
   });
   if (!plane) {
     h = R * M_y.h();
-    const Mat3<S> A = R * M_y.J();
+    const Mat3<S> RJ = R * M_y.J();
     for (int j = 0; j < 3; ++j)
-      for (int i = j; i < 3; ++i) Jp(i, j) = A.row(i).dot(R.row(j));
+      for (int i = j; i < 3; ++i) J_rot(i, j) = RJ.row(i).dot(R.row(j));
   }
   const Vec3<S> u = h + (m / S(2)) * l;
   const S two_lu = S(2) * l.dot(u);
   Mat3<S> J;
   for (int j = 0; j < 3; ++j)
     for (int i = j; i < 3; ++i) {
-      S v = Jp(i, j) - (u[i] * l[j] + l[i] * u[j]);
+      S v = J_rot(i, j) - (u[i] * l[j] + l[i] * u[j]);
       if (i == j) v += two_lu;
       J(i, j) = v;
       J(j, i) = v;

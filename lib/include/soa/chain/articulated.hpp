@@ -27,104 +27,109 @@ EIGEN_ALWAYS_INLINE int coordinate_axis(const HingeT<S>& h) {
   return coordinate_axis(h.axis);
 }
 
-/// The three blocks of \f$P\f$ rotated about the coordinate axis \f$I\f$ (plane_rotate()).
-template <int I, class S>
-EIGEN_ALWAYS_INLINE void plane_rotate_blocks(const Mat3<S>& R, const Mat6<S>& P, Mat3<S>& A,
-                                             Mat3<S>& B, Mat3<S>& C) {
-  A = plane_rotate<I>(R, Mat3<S>(P.template topLeftCorner<3, 3>()), true);
-  B = plane_rotate<I>(R, Mat3<S>(P.template topRightCorner<3, 3>()), false);
-  C = plane_rotate<I>(R, Mat3<S>(P.template bottomRightCorner<3, 3>()), true);
+/// The three blocks of \f$P\f$ rotated about the coordinate axis Axis (plane_rotate()).
+template <int Axis, class S>
+EIGEN_ALWAYS_INLINE void plane_rotate_blocks(const Mat3<S>& R, const Mat6<S>& P, Mat3<S>& P11,
+                                             Mat3<S>& P12, Mat3<S>& P22) {
+  P11 = plane_rotate<Axis>(R, Mat3<S>(P.template topLeftCorner<3, 3>()), true);
+  P12 = plane_rotate<Axis>(R, Mat3<S>(P.template topRightCorner<3, 3>()), false);
+  P22 = plane_rotate<Axis>(R, Mat3<S>(P.template bottomRightCorner<3, 3>()), true);
 }
 
-/// The shift of transform_symmetric() for an offset \f$l = \lambda e_I\f$ along a coordinate
-/// axis (detail::coordinate_offset()): \f$L = \lambda \tilde e_I\f$ makes row \f$I\f$ of
-/// \f$K = LB^*\f$, \f$Q = LC\f$ and \f$LQ^*\f$ zero, and column \f$I\f$ of \f$LQ^*\f$ too;
-/// the other entries are the general ones (axis_cross()), each sum in the general order less
-/// its exactly zero terms: 32 flops instead of 108, the general result bit for bit (up to
-/// the sign of a zero).
-template <int I, class S>
-EIGEN_ALWAYS_INLINE void shift_on_axis(S lambda, const Mat3<S>& A, const Mat3<S>& B,
-                                       const Mat3<S>& C, Mat6<S>& out) {
-  constexpr int J = I == 2 ? 0 : I + 1, K = J == 2 ? 0 : J + 1;
-  Mat3<S> LB, LC;  // K = L B^* and Q = L C, rows J and K only
+/// The shift of transform_symmetric() for an offset \f$l = \lambda e_{Axis}\f$ along a
+/// coordinate axis (detail::coordinate_offset()): \f$L = \lambda \tilde e_{Axis}\f$ makes row
+/// Axis of \f$L P_{12}^*\f$, \f$L P_{22}\f$ and \f$L (L P_{22})^*\f$ zero, and column Axis of
+/// \f$L (L P_{22})^*\f$ too; the other entries are the general ones (axis_cross()), each sum
+/// in the general order less its exactly zero terms: 32 flops instead of 108, the general
+/// result bit for bit (up to the sign of a zero). Index names as in soa/detail/plane.hpp.
+template <int Axis, class S>
+EIGEN_ALWAYS_INLINE void shift_on_axis(S lambda, const Mat3<S>& P11, const Mat3<S>& P12,
+                                       const Mat3<S>& P22, Mat6<S>& out) {
+  constexpr int U = Axis == 2 ? 0 : Axis + 1, W = U == 2 ? 0 : U + 1;
+  Mat3<S> LP12s, LP22;  // L P12^* and L P22, rows U and W only
   for (int j = 0; j < 3; ++j)
-    for (int i : {J, K}) {
-      LB(i, j) = axis_cross<I>(i, lambda, B(j, J), B(j, K));
-      LC(i, j) = axis_cross<I>(i, lambda, C(J, j), C(K, j));
+    for (int i : {U, W}) {
+      LP12s(i, j) = axis_cross<Axis>(i, lambda, P12(j, U), P12(j, W));
+      LP22(i, j) = axis_cross<Axis>(i, lambda, P22(U, j), P22(W, j));
     }
   for (int j = 0; j < 3; ++j)
     for (int i = j; i < 3; ++i) {
-      S o = A(i, j);
-      if (i != I) o += LB(i, j);
-      if (j != I) o += LB(j, i);
-      if (i != I && j != I) o += axis_cross<I>(i, lambda, LC(j, J), LC(j, K));  // (L Q^*)(i,j)
+      S o = P11(i, j);
+      if (i != Axis) o += LP12s(i, j);
+      if (j != Axis) o += LP12s(j, i);
+      if (i != Axis && j != Axis)
+        o += axis_cross<Axis>(i, lambda, LP22(j, U), LP22(j, W));  // (L (L P22)^*)(i,j)
       out(i, j) = o;
     }
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < j; ++i) out(i, j) = out(j, i);
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      out(i, j + 3) = out(j + 3, i) = i == I ? B(i, j) : B(i, j) + LC(i, j);
-  out.template bottomRightCorner<3, 3>() = C;
+      out(i, j + 3) = out(j + 3, i) = i == Axis ? P12(i, j) : P12(i, j) + LP22(i, j);
+  out.template bottomRightCorner<3, 3>() = P22;
 }
 
 }  // namespace detail
 
 /// \f$\phi(x,y)\, P\, \phi^*(x,y)\f$ for a symmetric 6x6 \f$P\f$ (an articulated inertia),
-/// from \f$(R, l)\f$ without the 6x6 \f$\phi\f$: rotate the blocks, then shift by
-/// \f$L = \tilde l\f$: with \f$P' = \begin{pmatrix} A & B \\ B^* & C\end{pmatrix}\f$,
-/// \f[ \phi P \phi^* = \begin{pmatrix} A + L B^* - B L + L C L^* & B + L C \\ (B + LC)^* &
-///     C \end{pmatrix}, \quad L^* = -L. \f]
-/// With \f$K = L B^*\f$ and \f$Q = L C\f$ the top left block is \f$A + K + K^* + L Q^*\f$
-/// (\f$B L = -K^*\f$, \f$L C L^* = L Q^*\f$): every product with \f$L\f$ is a cross product
-/// with \f$l\f$ of a column, and the symmetric blocks are filled from one triangle. A
-/// rotation about a coordinate axis (detail::plane_rotation_axis()) rotates the blocks in
-/// its plane only (detail::plane_rotate(), the same products less those with exact zeros
-/// and ones), and an offset along a coordinate axis shifts by detail::shift_on_axis(),
-/// unless \p fast_path is false. Writes \p out, which must not be \p P.
+/// from \f$(R, l)\f$ without the 6x6 \f$\phi\f$ (slide 79): rotate the blocks, then shift by
+/// \f$L = \tilde l\f$: with \f$P' = \begin{pmatrix} P_{11} & P_{12} \\ P_{12}^* & P_{22}
+/// \end{pmatrix}\f$ the blocks of \f$R P R^*\f$,
+/// \f[ \phi P \phi^* = \begin{pmatrix} P_{11} + L P_{12}^* - P_{12} L + L P_{22} L^* &
+///     P_{12} + L P_{22} \\ (P_{12} + L P_{22})^* & P_{22} \end{pmatrix}, \quad L^* = -L. \f]
+/// The top left block is \f$P_{11} + L P_{12}^* + (L P_{12}^*)^* + L (L P_{22})^*\f$
+/// (\f$P_{12} L = -(L P_{12}^*)^*\f$, \f$L P_{22} L^* = L (L P_{22})^*\f$): every product with
+/// \f$L\f$ is a cross product with \f$l\f$ of a column, and the symmetric blocks are filled
+/// from one triangle, so the result is symmetric exactly. A rotation about a coordinate axis
+/// (detail::plane_rotation_axis()) rotates the blocks in its plane only
+/// (detail::plane_rotate(), the same products less those with exact zeros and ones), and an
+/// offset along a coordinate axis shifts by detail::shift_on_axis(), unless \p fast_path is
+/// false: both give the general path's numbers (tested bit for bit). Writes \p out, which
+/// must not be \p P.
 template <class S>
 void transform_symmetric(const PhiT<S>& phi, const Mat6<S>& P, Mat6<S>& out,
                          bool fast_path = true) {
   const Mat3<S>& R = phi.R();
   const Vec3<S>& l = phi.l();
-  Mat3<S> A, B, C, K, Q;
+  Mat3<S> P11, P12, P22, LP12s, LP22;
   const int axis = fast_path ? detail::plane_rotation_axis(R) : -1;
   if (axis == 0) {
-    detail::plane_rotate_blocks<0>(R, P, A, B, C);
+    detail::plane_rotate_blocks<0>(R, P, P11, P12, P22);
   } else if (axis == 1) {
-    detail::plane_rotate_blocks<1>(R, P, A, B, C);
+    detail::plane_rotate_blocks<1>(R, P, P11, P12, P22);
   } else if (axis == 2) {
-    detail::plane_rotate_blocks<2>(R, P, A, B, C);
+    detail::plane_rotate_blocks<2>(R, P, P11, P12, P22);
   } else {
-    const Mat3<S> RA = R * P.template topLeftCorner<3, 3>();
-    const Mat3<S> RC = R * P.template bottomRightCorner<3, 3>();
-    B = R * P.template topRightCorner<3, 3>() * R.transpose();
+    const Mat3<S> RP11 = R * P.template topLeftCorner<3, 3>();
+    const Mat3<S> RP22 = R * P.template bottomRightCorner<3, 3>();
+    P12 = R * P.template topRightCorner<3, 3>() * R.transpose();
+    // the symmetric blocks from their lower triangle
     for (int j = 0; j < 3; ++j)
       for (int i = j; i < 3; ++i) {
-        A(i, j) = RA.row(i).dot(R.row(j));
-        C(i, j) = RC.row(i).dot(R.row(j));
+        P11(i, j) = RP11.row(i).dot(R.row(j));
+        P22(i, j) = RP22.row(i).dot(R.row(j));
       }
     for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < j; ++i) A(i, j) = A(j, i), C(i, j) = C(j, i);
+      for (int i = 0; i < j; ++i) P11(i, j) = P11(j, i), P22(i, j) = P22(j, i);
   }
-  if (fast_path && detail::with_plane_axis(detail::coordinate_offset(l), [&](auto I) {
-        detail::shift_on_axis<decltype(I)::value>(l[I], A, B, C, out);
+  if (fast_path && detail::with_plane_axis(detail::coordinate_offset(l), [&](auto axis_c) {
+        detail::shift_on_axis<decltype(axis_c)::value>(l[axis_c], P11, P12, P22, out);
       }))
     return;
   for (int j = 0; j < 3; ++j) {
-    K.col(j) = l.cross(B.row(j).transpose());  // K = L B^*
-    Q.col(j) = l.cross(C.col(j));              // Q = L C
+    LP12s.col(j) = l.cross(P12.row(j).transpose());  // L P12^*
+    LP22.col(j) = l.cross(P22.col(j));               // L P22
   }
   for (int j = 0; j < 3; ++j) {
-    const Vec3<S> LQj = l.cross(Q.row(j).transpose());  // column j of L Q^*
-    for (int i = j; i < 3; ++i) out(i, j) = A(i, j) + K(i, j) + K(j, i) + LQj[i];
+    const Vec3<S> LLP22j = l.cross(LP22.row(j).transpose());  // column j of L (L P22)^*
+    for (int i = j; i < 3; ++i) out(i, j) = P11(i, j) + LP12s(i, j) + LP12s(j, i) + LLP22j[i];
   }
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < j; ++i) out(i, j) = out(j, i);
-  const Mat3<S> BQ = B + Q;
-  out.template topRightCorner<3, 3>() = BQ;
-  out.template bottomLeftCorner<3, 3>() = BQ.transpose();
-  out.template bottomRightCorner<3, 3>() = C;
+  const Mat3<S> P12_LP22 = P12 + LP22;
+  out.template topRightCorner<3, 3>() = P12_LP22;
+  out.template bottomLeftCorner<3, 3>() = P12_LP22.transpose();
+  out.template bottomRightCorner<3, 3>() = P22;
 }
 
 /// transform_symmetric() returning the result.
@@ -295,8 +300,8 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
                ArticulatedT<S>& art, CompositeTraceT<S>& guard) {
   const BodyT<S>& B = m.body(k);
   const S* th = x.theta.data() + B.q_offset;
-  const int i = art.slot(k);
-  Mat6<S>& P = art.P[i];
+  const int slot = art.slot(k);
+  Mat6<S>& P = art.P[slot];
   if (k > 1)
     transform_symmetric(ws.phi[k - 2], art.P_plus[art.slot(k - 1)], P, m.fast_paths);
   else
@@ -306,15 +311,19 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
   const int nv = B.hinge.nv();
   S d_min;
   if (nv == 1) {
-    // P H*(k) as a column of P for a revolute or prismatic hinge about a coordinate axis
-    // (+-e_i), else P s; then the rank-one P+ = P - G (P s)^*.
+    // One-dof hinge, H^*(k) = s a 6-vector: D(k) = s^* P s is a scalar, so D^{-1}(k) is a
+    // division (no eigen-decomposition or inverse of an n_k x n_k matrix), G(k) = P s / D a
+    // 6-vector and P^+ = P - G (P s)^* a rank-one update: the general branch's formulas for
+    // n_k = 1. P s is a signed column of P for a revolute or prismatic hinge about a coordinate
+    // axis (s = +-e_c: no products), P's first three columns times the axis for another
+    // revolute one (s = [a; 0]: the products with s's zeros dropped), else P s.
     const Vec6<S> s = one_dof_map(B.hinge);
-    const int ax =
+    const int axis =
         m.fast_paths && B.hinge.type != HingeType::Helical ? detail::coordinate_axis(B.hinge) : -1;
     Vec6<S> Ps;
     S d;
-    if (ax >= 0) {
-      const int c = B.hinge.type == HingeType::Prismatic ? ax + 3 : ax;
+    if (axis >= 0) {
+      const int c = B.hinge.type == HingeType::Prismatic ? axis + 3 : axis;
       Ps = s[c] * P.col(c);
       d = s[c] * Ps[c];
     } else {
@@ -322,26 +331,28 @@ S riccati_step(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws, 
                                                : Vec6<S>(P * s);
       d = s.dot(Ps);
     }
-    d_min = d;
-    // Sized once (the model's constructor sizes them): no write to the size fields.
-    if (art.D[i].rows() != 1 || art.D_inv[i].rows() != 1 || art.G[i].cols() != 1)
-      art.D[i].resize(1, 1), art.D_inv[i].resize(1, 1), art.G[i].resize(6, 1);
-    art.D[i](0, 0) = d;
+    d_min = d;  // the one eigenvalue of a 1x1 D(k)
+    // Sized once (ArticulatedT's constructor): no write to the size fields.
+    if (art.D[slot].rows() != 1 || art.D_inv[slot].rows() != 1 || art.G[slot].cols() != 1)
+      art.D[slot].resize(1, 1), art.D_inv[slot].resize(1, 1), art.G[slot].resize(6, 1);
+    art.D[slot](0, 0) = d;
     const S d_inv = S(1) / d;
-    art.D_inv[i](0, 0) = d_inv;
+    art.D_inv[slot](0, 0) = d_inv;
     const Vec6<S> g = Ps * d_inv;
-    art.G[i].col(0) = g;
-    art.P_plus[i].noalias() = P - g * Ps.transpose();
+    art.G[slot].col(0) = g;
+    art.P_plus[slot].noalias() = P - g * Ps.transpose();
   } else {
     const JointMap<S> Hs = B.hinge.H_star(th);
     const JointMap<S> PHs = P * Hs;
-    art.D[i] = Hs.transpose() * PHs;
-    d_min = detail::hinge_eigenvalues(art.D[i]).minCoeff();
-    art.D_inv[i] = art.D[i].inverse();
-    art.G[i] = PHs * art.D_inv[i];
-    art.P_plus[i] = P - art.G[i] * PHs.transpose();
+    art.D[slot] = Hs.transpose() * PHs;
+    d_min = detail::hinge_eigenvalues(art.D[slot]).minCoeff();
+    art.D_inv[slot] = art.D[slot].inverse();
+    art.G[slot] = PHs * art.D_inv[slot];
+    art.P_plus[slot] = P - art.G[slot] * PHs.transpose();
   }
-  // |H*(k)|_F^2 times tr R(k) bounds lambda_max(H Q H*) from above (Q <= R).
+  // |H*(k)|_F^2 times tr R(k) bounds lambda_max(H Q H*) from above (Q <= R): when D(k)
+  // clears the threshold against this bound it clears it against the exact ratio, and
+  // singular_D_ratio()'s eigenvalues are computed only for the hinges near singular.
   const S h2 = B.hinge.type == HingeType::Helical ? S(1) + B.hinge.pitch * B.hinge.pitch : S(nv);
   if (!(d_min > singular_D_threshold<S>() * h2 * guard.trace()) && std::isfinite(double(d_min))) {
     const S ratio = singular_D_ratio(m, x, ws, art, k, d_min);

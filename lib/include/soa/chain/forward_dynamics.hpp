@@ -1,5 +1,7 @@
 /// \file
-/// O(N) articulated body forward dynamics of a serial chain (lesson 8).
+/// O(N) articulated body forward dynamics of a serial chain (lesson 8). Names: with the
+/// tip-to-base numbering (\ref conventions_chain), `_next` is a value of body k+1 (inboard)
+/// and `_prev` of body k-1 (outboard); `_plus` is the \f$^+\f$ of the lesson.
 #pragma once
 
 #include <cmath>
@@ -19,10 +21,10 @@ using HingeVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, 6, 1>;
 ///
 /// Lean storage (ForwardDynamicsT::lean()) keeps only what the last pass needs, \f$G(k)\f$ and
 /// \f$\nu(k)\f$, packed (\f$6 n_v + n_v\f$ numbers), with `art` rolling over the last two
-/// bodies and no \f$z, z^+, \alpha^+\f$: about 56 bytes a revolute body instead of every
-/// per-body quantity of the full storage (its size: README "Speed"), for chains of a million
-/// bodies (`soa forward-dynamics`). The arithmetic is the same, so is the result, bit for bit
-/// (tested).
+/// bodies and no \f$z, z^+, \alpha^+\f$: seven numbers a revolute body instead of every
+/// per-body quantity of the full storage (their sizes: README "Speed"), for chains of a
+/// million bodies (`soa forward-dynamics`). The arithmetic is the same, so is the result, bit
+/// for bit (tested).
 template <class S>
 struct ForwardDynamicsT {
   explicit ForwardDynamicsT(const ModelT<S>& m)
@@ -124,14 +126,19 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
   ForceT<S>* const b = ws.b.data();
   // A non-finite theta would stop the joint transforms with a message that names no body.
   if (!x.theta.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
+  // At rest (beta = 0) V(k), a(k) and the gyroscopic term are exactly zero: their products
+  // are skipped, and the zeros they would give are stored.
   const bool moving = !x.beta.isZero(0);
   const Vec3<S> zero = Vec3<S>::Zero();
-  // Base to tip: phi(k+1,k), V(k), a(k), b(k) (spatial vectors as their 3-vector parts),
-  // after the hinge angles' sines and cosines in one batch.
+  // Base to tip: phi(k+1,k), V(k), a(k), b(k). Spatial vectors are held as their angular and
+  // linear 3-vectors ([w; v], [N; F]), which stay in registers across the loop; the products
+  // are the 6-vector ones written out by parts. The revolute hinges' sines and cosines come
+  // first, in one batch (hinge_sin_cos(): SLEEF's vector sincos in double, within an ulp of
+  // std::sin and std::cos), rather than two libm calls a body inside the loop.
   hinge_sin_cos(m, x.theta.data(), ws);
   const S* const sin_h = ws.hinge_sin.data();
   const S* const cos_h = ws.hinge_cos.data();
-  Vec3<S> wp = zero, vp = zero;  // V(k+1)
+  Vec3<S> w_next = zero, v_next = zero;  // V(k+1)
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
@@ -141,7 +148,9 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       const S* be = x.beta.data() + B.v_offset;
       Vec3<S> dw, dv;
       detail::hinge_rate(B.hinge, th, be, dw, dv);
-      detail::velocity_and_coriolis(phi[k - 1], wp, vp, dw, dv, w, v, a_w, a_v);
+      detail::velocity_and_coriolis(phi[k - 1], w_next, v_next, dw, dv, w, v, a_w, a_v);
+      // Hdot^*(k) beta(k), the rate of the joint map seen from O_k (lesson 3, section 7): of
+      // the hinges here only the universal joint's map changes with theta.
       if (B.hinge.type == HingeType::Universal) {
         const AccelerationT<S> Hdot_beta = B.hinge.H_star_dot_times(th, be);
         a_w += Hdot_beta.angular();
@@ -150,18 +159,20 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       // b(k) = [w x J w; w x (w x h)] (lesson 2)
       N = w.cross(B.M.J() * w);
       F = w.cross(w.cross(B.M.h()));
-      wp = w, vp = v;
+      w_next = w, v_next = v;
     }
+    // No external forces: f_ext is empty, and b(k) is the gyroscopic term alone.
     if (!f_ext.empty()) N -= f_ext[k - 1].angular(), F -= f_ext[k - 1].linear();
     ws.V[k - 1] = VelocityT<S>(w, v);
     a[k - 1] = AccelerationT<S>(a_w, a_v);
     b[k - 1] = ForceT<S>(N, F);
   }
-  // Tip to base: P, D, G, P+ (riccati_step()) and z, epsilon, nu, z+.
+  // Tip to base: P, D, G, P+ (riccati_step()) and z, epsilon, nu, z+. Lean storage: `art`
+  // rolls over two slots and z, z+, nu are not stored (fd.z, fd.z_plus, fd.nu are empty).
   ArticulatedT<S>& art = fd.art;
   const bool lean = fd.is_lean();
   CompositeTraceT<S> guard;
-  Vec3<S> Np = zero, Fp = zero;  // z+(k-1)
+  Vec3<S> N_prev = zero, F_prev = zero;  // z+(k-1)
   for (int k = 1; k <= n; ++k) {
     const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
@@ -170,8 +181,8 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     if (!std::isfinite(double(d_min))) throw_non_finite(m, x, T, f_ext, beta_dot);
     // z(k) = phi(k,k-1) z+(k-1) + P(k) a(k) + b(k)
     Vec3<S> N = b[k - 1].angular(), F = b[k - 1].linear();
-    if (k > 1) detail::add_apply(phi[k - 2], Np, Fp, N, F);
-    if (moving) {
+    if (k > 1) detail::add_apply(phi[k - 2], N_prev, F_prev, N, F);
+    if (moving) {  // a(k) = 0 at rest
       const Mat6<S>& P = art.P[slot];
       const Vec3<S> a_w = a[k - 1].angular(), a_v = a[k - 1].linear();
       N += P.template topLeftCorner<3, 3>() * a_w + P.template topRightCorner<3, 3>() * a_v;
@@ -179,7 +190,9 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     }
     const ForceT<S> z(N, F);
     if (!lean) fd.z[k - 1] = z;
-    // epsilon(k) = T(k) + spring force - H(k) z(k)
+    // epsilon(k) = T(k) + spring force - H(k) z(k). One-dof hinges (nv == 1) take scalar
+    // statements instead of loops of one; a revolute hinge's H(k) z(k) is a . N, the product
+    // with H's three zeros dropped; a body without spring or damper adds no force.
     const int nv = B.hinge.nv();
     S e[6], Hz[6];
     if (nv == 1)
@@ -196,7 +209,8 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       e[0] -= Hz[0];
     else
       for (int i = 0; i < nv; ++i) e[i] -= Hz[i];
-    // nu(k) = D^{-1}(k) epsilon(k), z+(k) = z(k) + G(k) epsilon(k)
+    // nu(k) = D^{-1}(k) epsilon(k), z+(k) = z(k) + G(k) epsilon(k). One-dof hinge: D^{-1} is
+    // 1x1 (riccati_step()), so nu is a product and G epsilon a 6-vector times a scalar.
     const JointMap<S>& G = art.G[slot];
     S nu_k[6];
     if (nv == 1) {
@@ -210,6 +224,8 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       N += Ge.template head<3>();
       F += Ge.template tail<3>();
     }
+    // G(k) and nu(k) packed for the last pass (ForwardDynamicsT::G_packed): read there in
+    // order, from consecutive memory, in both storages.
     for (int i = 0; i < nv; ++i) {
       fd.nu_packed[B.v_offset + i] = nu_k[i];
       Eigen::Map<Vec6<S>>(fd.G_packed.data() + 6 * (B.v_offset + i)) = G.col(i);
@@ -220,17 +236,18 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       for (int i = 0; i < nv; ++i) nu[i] = nu_k[i];
       fd.z_plus[k - 1] = ForceT<S>(N, F);
     }
-    Np = N, Fp = F;
+    N_prev = N, F_prev = F;
   }
-  // Base to tip: alpha+(k), beta_dot(k), alpha(k).
-  Vec3<S> dwp = zero, dvp = zero;  // alpha(k+1)
-  if (m.has_gravity()) dvp = gravity_base_acceleration(m).linear();
+  // Base to tip: alpha+(k), beta_dot(k), alpha(k), from alpha(n+1) = [0; -g] (zero without
+  // gravity).
+  Vec3<S> dw_next = zero, dv_next = zero;  // alpha(k+1)
+  if (m.has_gravity()) dv_next = gravity_base_acceleration(m).linear();
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = bodies[k - 1];
     const S* th = x.theta.data() + B.q_offset;
     // alpha+(k) = phi*(k+1,k) alpha(k+1)
     Vec3<S> dw, dv;
-    detail::transpose_apply(phi[k - 1], dwp, dvp, dw, dv);
+    detail::transpose_apply(phi[k - 1], dw_next, dv_next, dw, dv);
     if (!lean) fd.alpha_plus[k - 1] = AccelerationT<S>(dw, dv);
     // beta_dot(k) = nu(k) - G*(k) alpha+(k)
     S* bd = beta_dot.data() + B.v_offset;
@@ -242,14 +259,15 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
       const Eigen::Map<const Vec6<S>> Gi(G + 6 * i);
       bd[i] = nu[i] - (Gi.template head<3>().dot(dw) + Gi.template tail<3>().dot(dv));
     }
-    // alpha(k) = alpha+(k) + H*(k) beta_dot(k) + a(k)
+    // alpha(k) = alpha+(k) + H*(k) beta_dot(k) + a(k); a(k) = 0 at rest. detail::hinge_rate():
+    // a revolute hinge's H^* beta_dot is [beta_dot a; 0], without the general switch.
     Vec3<S> hw, hv;
     detail::hinge_rate(B.hinge, th, bd, hw, hv);
     dw += hw;
     dv += hv;
     if (moving) dw += a[k - 1].angular(), dv += a[k - 1].linear();
     ws.alpha[k - 1] = AccelerationT<S>(dw, dv);
-    dwp = dw, dvp = dv;
+    dw_next = dw, dv_next = dv;
   }
   if (!beta_dot.allFinite()) throw_non_finite(m, x, T, f_ext, beta_dot);
 }

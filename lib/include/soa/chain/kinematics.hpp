@@ -1,5 +1,7 @@
 /// \file
-/// Serial-chain kinematics: the O(N) scatter recursions, base to tip (lesson 3).
+/// Serial-chain kinematics: the O(N) scatter recursions, base to tip (lesson 3). Names: with
+/// the tip-to-base numbering (\ref conventions_chain), `_next` is a value of body k+1
+/// (inboard); `Rp` is a placement's rotation \f$R_p\f$ (slides 25-27).
 #pragma once
 
 #include <cmath>
@@ -23,20 +25,21 @@ EIGEN_ALWAYS_INLINE Vec3<S> transpose_times(const Mat3<S>& R, const Vec3<S>& x) 
 /// \f$R_p\, e^{\theta \tilde a}\f$ for a unit axis \f$a\f$ from \f$c = \cos\theta\f$ and
 /// \f$s = \sin\theta\f$, by Rodrigues (lesson 1):
 /// \f$e^{\theta\tilde a} = c I + s\tilde a + (1 - c)\, a a^*\f$. About a coordinate axis
-/// \f$\pm e_i\f$ only two columns of \f$R_p\f$ turn: with \f$(i, j, m)\f$ cyclic,
-/// \f$c_j' = c\, c_j + s\, c_m\f$ and \f$c_m' = c\, c_m - s\, c_j\f$ (\f$s\f$ taking the
-/// sign of the axis).
+/// \f$\pm e_i\f$ only two columns of \f$R_p\f$ turn: with \f$(i, u, w)\f$ cyclic,
+/// \f$c_u' = c\, c_u + s\, c_w\f$ and \f$c_w' = c\, c_w - s\, c_u\f$ (\f$s\f$ taking the
+/// sign of the axis), the general product less its products with \f$e^{\theta\tilde a}\f$'s
+/// exact zeros and ones.
 template <class S>
 EIGEN_ALWAYS_INLINE Mat3<S> rotate_about_axis(const Mat3<S>& Rp, const Vec3<S>& a, S c, S s) {
   using std::abs;
   const int i = a[0] != S(0) ? 0 : a[1] != S(0) ? 1 : 2;
-  const int j = i == 2 ? 0 : i + 1, m = j == 2 ? 0 : j + 1;
-  if (a[j] == S(0) && a[m] == S(0) && abs(a[i]) == S(1)) {
+  const int u = i == 2 ? 0 : i + 1, w = u == 2 ? 0 : u + 1;
+  if (a[u] == S(0) && a[w] == S(0) && abs(a[i]) == S(1)) {
     const S si = a[i] * s;
     Mat3<S> R;
     R.col(i) = Rp.col(i);
-    R.col(j) = c * Rp.col(j) + si * Rp.col(m);
-    R.col(m) = c * Rp.col(m) - si * Rp.col(j);
+    R.col(u) = c * Rp.col(u) + si * Rp.col(w);
+    R.col(w) = c * Rp.col(w) - si * Rp.col(u);
     return R;
   }
   Mat3<S> E = (S(1) - c) * a * a.transpose() + s * tilde(a);
@@ -80,27 +83,28 @@ EIGEN_ALWAYS_INLINE PhiT<S> joint_phi(const BodyT<S>& B, const S* theta, S sin_t
 /// \f$\sin\theta(k)\f$ and \f$\cos\theta(k)\f$ of every revolute hinge k into
 /// ws.hinge_sin and ws.hinge_cos (entry k - 1), for joint_phi(). In double the angles are
 /// gathered in body order and take one batch of detail::sin_cos() (SLEEF's vector sincos,
-/// 1.0 ulp): one libm call per joint was a large share of the recursions' time per body.
-/// Other scalars take std::sin and std::cos of the revolute angles only.
+/// 1.0 ulp): several angles a vector instruction, instead of two scalar libm calls a joint
+/// inside the recursions; the results may differ from std::sin's in the last bit. Other
+/// scalars take std::sin and std::cos of the revolute angles only.
 template <class S>
 void hinge_sin_cos(const ModelT<S>& m, const S* theta, WorkspaceT<S>& ws) {
   WorkspaceT<S>::size(ws.hinge_sin, m);
   WorkspaceT<S>::size(ws.hinge_cos, m);
   const BodyT<S>* const bodies = m.bodies().data();
-  S* const s = ws.hinge_sin.data();
-  S* const c = ws.hinge_cos.data();
+  S* const sin_h = ws.hinge_sin.data();
+  S* const cos_h = ws.hinge_cos.data();
   if constexpr (detail::batched_sin_cos<S>) {
     for (int i = 0; i < m.n(); ++i)  // the angles (0 for other hinges), then cos in place
-      c[i] = bodies[i].hinge.type == HingeType::Revolute ? theta[bodies[i].q_offset] : S(0);
-    detail::sin_cos(c, m.n(), s, c);
+      cos_h[i] = bodies[i].hinge.type == HingeType::Revolute ? theta[bodies[i].q_offset] : S(0);
+    detail::sin_cos(cos_h, m.n(), sin_h, cos_h);
   } else {
     using std::cos;
     using std::sin;
     for (int i = 0; i < m.n(); ++i)
       if (bodies[i].hinge.type == HingeType::Revolute) {
         const S th = theta[bodies[i].q_offset];
-        s[i] = sin(th);
-        c[i] = cos(th);
+        sin_h[i] = sin(th);
+        cos_h[i] = cos(th);
       }
   }
 }
@@ -146,19 +150,20 @@ void update_poses(const ModelT<S>& m, WorkspaceT<S>& ws) {
 /// \omega_{k+1}\times\Delta_v + \Delta_\omega\times\Delta_v\f$ and the last term is non-zero
 /// only for free hinges (\f$\mathring H^*\f$ is the rate seen from \f$O_k\f$).
 template <class S>
-AccelerationT<S> coriolis_term(const PhiT<S>& phi, const VelocityT<S>& V_parent,
+AccelerationT<S> coriolis_term(const PhiT<S>& phi, const VelocityT<S>& V_next,
                                const VelocityT<S>& V, const VelocityT<S>& dV,
                                const AccelerationT<S>& Hdot_beta) {
   const Vec3<S> w = V.angular(), v = V.linear();
-  const Vec3<S> wp = V_parent.angular(), vp = V_parent.linear();
-  const Vec3<S> wpvp = phi.R().transpose() * wp.cross(vp);
-  return cross(V, dV) + Hdot_beta + AccelerationT<S>(Vec3<S>::Zero(), w.cross(v) - wpvp);
+  const Vec3<S> w_next = V_next.angular(), v_next = V_next.linear();
+  const Vec3<S> wv_next = phi.R().transpose() * w_next.cross(v_next);
+  return cross(V, dV) + Hdot_beta + AccelerationT<S>(Vec3<S>::Zero(), w.cross(v) - wv_next);
 }
 
 namespace detail {
 
 /// \f$\Delta_V = H^*(k)\beta(k) = [\Delta_\omega; \Delta_v]\f$ as its two parts; a revolute
-/// hinge gives \f$[\beta a; 0]\f$ without the general switch.
+/// hinge gives \f$[\beta a; 0]\f$ without the general switch on the hinge type (the same
+/// products: \f$H^*(k) = [a; 0]\f$).
 template <class S>
 EIGEN_ALWAYS_INLINE void hinge_rate(const HingeT<S>& h, const S* theta, const S* beta, Vec3<S>& dw,
                                     Vec3<S>& dv) {
@@ -199,15 +204,15 @@ EIGEN_ALWAYS_INLINE void add_apply(const PhiT<S>& phi, const Vec3<S>& N, const V
 ///     \omega' \times (u + \Delta_v) \end{pmatrix} + \mathring H^*(k)\beta(k), \f]
 /// the last term added by the caller (universal hinges only).
 template <class S>
-EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>& wp,
-                                               const Vec3<S>& vp, const Vec3<S>& dw,
+EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>& w_next,
+                                               const Vec3<S>& v_next, const Vec3<S>& dw,
                                                const Vec3<S>& dv, Vec3<S>& w, Vec3<S>& v,
                                                Vec3<S>& a_w, Vec3<S>& a_v) {
   const Mat3<S>& R = phi.R();
-  const Vec3<S> w1 = transpose_times(R, wp);
-  const Vec3<S> u_dv = transpose_times(R, Vec3<S>(wp.cross(phi.l()))) + dv;
+  const Vec3<S> w1 = transpose_times(R, w_next);
+  const Vec3<S> u_dv = transpose_times(R, Vec3<S>(w_next.cross(phi.l()))) + dv;
   w = w1 + dw;
-  v = transpose_times(R, vp) + u_dv;
+  v = transpose_times(R, v_next) + u_dv;
   a_w = w1.cross(dw);
   a_v = w.cross(dv) + w1.cross(u_dv);
 }
@@ -217,13 +222,13 @@ EIGEN_ALWAYS_INLINE void velocity_and_coriolis(const PhiT<S>& phi, const Vec3<S>
 /// The fast form of soa::reference::velocities().
 /// Velocities \f$V(k) = \phi^*(k+1,k)\,V(k+1) + H^*(k)\beta(k)\f$ and Coriolis terms
 /// \f$a(k)\f$, base to tip (\f$V(n+1) = 0\f$). Needs update_phi(). At rest (\f$\beta = 0\f$)
-/// every \f$V\f$ and \f$a\f$ is zero and nothing else is computed.
+/// every \f$V\f$ and \f$a\f$ is exactly zero: they are stored and nothing else is computed.
 template <class S>
 void update_velocities(const ModelT<S>& m, const StateT<S>& x, WorkspaceT<S>& ws) {
   const bool at_rest = x.beta.isZero(0);
   WorkspaceT<S>::size(ws.V, m);
   WorkspaceT<S>::size(ws.a, m);
-  VelocityT<S> V_parent;
+  VelocityT<S> V_next;
   for (int k = m.n(); k >= 1; --k) {
     if (at_rest) {
       ws.V[k - 1] = VelocityT<S>();
@@ -235,9 +240,9 @@ void update_velocities(const ModelT<S>& m, const StateT<S>& x, WorkspaceT<S>& ws
     const S* be = x.beta.data() + B.v_offset;
     const VelocityT<S> dV = B.hinge.H_star_times(th, be);
     const PhiT<S>& phi = ws.phi[k - 1];
-    ws.V[k - 1] = phi.transpose_apply(V_parent) + dV;
-    ws.a[k - 1] = coriolis_term(phi, V_parent, ws.V[k - 1], dV, B.hinge.H_star_dot_times(th, be));
-    V_parent = ws.V[k - 1];
+    ws.V[k - 1] = phi.transpose_apply(V_next) + dV;
+    ws.a[k - 1] = coriolis_term(phi, V_next, ws.V[k - 1], dV, B.hinge.H_star_dot_times(th, be));
+    V_next = ws.V[k - 1];
   }
 }
 
@@ -249,16 +254,16 @@ void update_velocities(const ModelT<S>& m, const StateT<S>& x, WorkspaceT<S>& ws
 template <class S>
 void update_accelerations(const ModelT<S>& m, const StateT<S>& x, const S* beta_dot,
                           const AccelerationT<S>& alpha_base, WorkspaceT<S>& ws) {
-  AccelerationT<S> alpha_parent = alpha_base;
+  AccelerationT<S> alpha_next = alpha_base;
   WorkspaceT<S>::size(ws.alpha, m);
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
-    AccelerationT<S> alpha = ws.phi[k - 1].transpose_apply(alpha_parent) + ws.a[k - 1];
+    AccelerationT<S> alpha = ws.phi[k - 1].transpose_apply(alpha_next) + ws.a[k - 1];
     if (beta_dot)
       alpha += AccelerationT<S>(
           B.hinge.H_star_times(x.theta.data() + B.q_offset, beta_dot + B.v_offset).vector());
     ws.alpha[k - 1] = alpha;
-    alpha_parent = alpha;
+    alpha_next = alpha;
   }
 }
 

@@ -43,13 +43,13 @@ EIGEN_ALWAYS_INLINE void rows_dot(const MatX<S>& X, Eigen::Index r0, Eigen::Inde
     y[i] = ((c0 * x0[i] + c1 * x1[i]) + (c2 * x2[i] + c3 * x3[i])) + (c4 * x4[i] + c5 * x5[i]);
 }
 
-/// Row \p r of \f$s\f$, \f$[a; v]\f$, and of \f$f\f$, \f$[N; F]\f$, in \p w.
+/// Row \p r of \f$s\f$, \f$[a; v]\f$, and of \f$f\f$, \f$[N; F]\f$, in \p work.
 template <class S>
-EIGEN_ALWAYS_INLINE void put_rows(MassMatrixInertialT<S>& w, int r, const Vec3<S>& a,
+EIGEN_ALWAYS_INLINE void put_rows(MassMatrixInertialT<S>& work, int r, const Vec3<S>& a,
                                   const Vec3<S>& v, const Vec3<S>& N, const Vec3<S>& F) {
-  const Eigen::Index ld = w.s.rows();
-  S* const s = w.s.data() + r;
-  S* const f = w.f.data() + r;
+  const Eigen::Index ld = work.s.rows();
+  S* const s = work.s.data() + r;
+  S* const f = work.f.data() + r;
   for (int i = 0; i < 3; ++i) {
     s[i * ld] = a[i], s[(3 + i) * ld] = v[i];
     f[i * ld] = N[i], f[(3 + i) * ld] = F[i];
@@ -96,12 +96,12 @@ EIGEN_ALWAYS_INLINE S row_dot(const S* X, Eigen::Index ld, Eigen::Index i, const
 /// its columns of the pose and of \f$J\f$ (the fast paths). Needs update_phi().
 template <class S>
 void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const WorkspaceT<S>& ws,
-                          MassMatrixInertialT<S>& w, MatX<S>& Mass) {
+                          MassMatrixInertialT<S>& work, MatX<S>& Mass) {
   const int n = m.n(), nv = m.nv();
   const bool fast = m.fast_paths;
   Mass.resize(nv, nv);
   // composite_inertias(), with the plane axis of each phi for the poses below
-  detail::composite_sweep(m, ws, w.R.data(), w.axis.data());
+  detail::composite_sweep(m, ws, work.R.data(), work.axis.data());
   // Base to tip: the pose (R, p) of O_k (slides 25-27), then for each column [w; v] of
   // H*(k) and its force [N; F] = R(k) [w; v] at O_k the rows s = [a; v'] and f = [N'; F'],
   // and the diagonal block H(k) R(k) H*(k).
@@ -109,37 +109,39 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
   Vec3<S> p = Vec3<S>::Zero();      // {}^I l(I, O_k)
   for (int k = n; k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
-    const SpatialInertiaT<S>& Rk = w.R[k - 1];
+    const SpatialInertiaT<S>& Rk = work.R[k - 1];
     // {}^I T_{O_k} = {}^I T_{O_{k+1}} phi(k+1, k).pose(): p += R l, then R = R R_phi, in the
     // plane of R_phi only when it turns about a coordinate axis (detail::plane_times(), the
     // general products less those with an exact 0 or 1: the same bits, or an ulp apart where
     // Eigen's product fuses a multiply-add).
     const PoseT<S>& Tk = ws.phi[k - 1].pose();
     p += R * Tk.l();
-    if (!(detail::with_plane_axis(w.axis[k - 1], [&](auto I) {
-          R = detail::plane_times<decltype(I)::value>(R, Tk.R());
+    if (!(detail::with_plane_axis(work.axis[k - 1], [&](auto axis_c) {
+          R = detail::plane_times<decltype(axis_c)::value>(R, Tk.R());
         })))
       R = R * Tk.R();
     const int o = B.v_offset;
     if (B.hinge.type == HingeType::Revolute) {  // [N; F] = R(k) [a; 0] = [J a; a x h]
       const Vec3<S>& a = B.hinge.axis;
-      // About +-e_i (sign g): a' = g R e_i, N = g J e_i, a x h has two entries, and
+      // About +-e_i (sign sg): a' = sg R e_i, N = sg J e_i, a x h has two entries, and
       // M(k,k) = J_ii; each product left out has an exact 0 or 1 (the same bits up to the
-      // fused multiply-adds of Eigen's general products).
+      // fused multiply-adds of Eigen's general products). (i, u, w) cyclic, as in
+      // soa/detail/plane.hpp.
       const bool axis_path =
-          fast && detail::with_plane_axis(detail::coordinate_axis(a), [&](auto I) {
-            constexpr int i = decltype(I)::value, j = i == 2 ? 0 : i + 1, l = j == 2 ? 0 : j + 1;
-            const S g = a[i];
+          fast && detail::with_plane_axis(detail::coordinate_axis(a), [&](auto axis_c) {
+            constexpr int i = decltype(axis_c)::value, u = i == 2 ? 0 : i + 1,
+                          w = u == 2 ? 0 : u + 1;
+            const S sg = a[i];
             const Vec3<S>& h = Rk.h();
-            const Vec3<S> aw = g * R.col(i), N = g * Rk.J().col(i);
-            const Vec3<S> Fw = R.col(j) * (-(g * h[l])) + R.col(l) * (g * h[j]);
+            const Vec3<S> aw = sg * R.col(i), N = sg * Rk.J().col(i);
+            const Vec3<S> Fw = R.col(u) * (-(sg * h[w])) + R.col(w) * (sg * h[u]);
             Mass(o, o) = Rk.J()(i, i);
-            detail::put_rows<S>(w, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
+            detail::put_rows<S>(work, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
           });
       if (axis_path) continue;
       const Vec3<S> N = Rk.J() * a, aw = R * a, Fw = R * a.cross(Rk.h());
       Mass(o, o) = a.dot(N);
-      detail::put_rows<S>(w, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
+      detail::put_rows<S>(work, o, aw, p.cross(aw), R * N + p.cross(Fw), Fw);
       continue;
     }
     const JointMap<S> Hs = B.hinge.H_star(x.theta.data() + B.q_offset);
@@ -148,7 +150,7 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
       for (int r = 0; r <= c; ++r)
         Mass(o + r, o + c) = Mass(o + c, o + r) = Hs.col(r).dot(hc.vector());
       const Vec3<S> aw = R * Hs.col(c).template head<3>(), Fw = R * hc.linear();
-      detail::put_rows<S>(w, o + c, aw, R * Hs.col(c).template tail<3>() + p.cross(aw),
+      detail::put_rows<S>(work, o + c, aw, R * Hs.col(c).template tail<3>() + p.cross(aw),
                           R * hc.angular() + p.cross(Fw), Fw);
     }
   }
@@ -160,16 +162,17 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
   // M(j,k) and M(k,j) are the same six products summed in the same order.
   constexpr int kMirrorMax = 32;
   if (nv <= kMirrorMax) {
-    S* const M = Mass.data();
-    const S *const s = w.s.data(), *const f = w.f.data();
+    S* const Mass_data = Mass.data();
+    const S *const s = work.s.data(), *const f = work.f.data();
     const Eigen::Index ld = nv;
     for (int k = 1; k <= n; ++k) {  // hinge k's columns [o, below), tip first
       const int o = m.body(k).v_offset, below = k < n ? m.body(k + 1).v_offset : nv;
       for (int c = o; c < below; ++c) {
         S fc[6];
         for (int i = 0; i < 6; ++i) fc[i] = f[c + i * ld];
-        S* const col = M + c * ld;
-        for (int i = below; i < nv; ++i) M[c + i * ld] = col[i] = detail::row_dot(s, ld, i, fc);
+        S* const col = Mass_data + c * ld;
+        for (int i = below; i < nv; ++i)
+          Mass_data[c + i * ld] = col[i] = detail::row_dot(s, ld, i, fc);
       }
     }
     return;
@@ -179,10 +182,10 @@ void mass_matrix_inertial(const ModelT<S>& m, const StateT<S>& x, const Workspac
     const int o = B.v_offset, below = o + B.hinge.nv();
     for (int c = o; c < below; ++c) {
       S fc[6], sc[6];
-      for (int i = 0; i < 6; ++i) fc[i] = w.f(c, i), sc[i] = w.s(c, i);
+      for (int i = 0; i < 6; ++i) fc[i] = work.f(c, i), sc[i] = work.s(c, i);
       S* col = Mass.col(c).data();
-      detail::rows_dot(w.s, below, nv - below, fc, col + below);
-      detail::rows_dot(w.f, 0, o, sc, col);
+      detail::rows_dot(work.s, below, nv - below, fc, col + below);
+      detail::rows_dot(work.f, 0, o, sc, col);
     }
   }
 }

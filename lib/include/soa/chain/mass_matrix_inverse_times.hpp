@@ -51,11 +51,11 @@ void mass_matrix_inverse_times(const ModelT<S>& m, const StateT<S>& x, const Vec
     const int nv = B.hinge.nv();
     const AccelerationT<S> alpha_plus =
         k < m.n() ? ws.phi[k - 1].transpose_apply(alpha) : AccelerationT<S>();
-    S* b = out.data() + B.v_offset;
+    S* beta_k = out.data() + B.v_offset;
     for (int i = 0; i < nv; ++i)
-      b[i] = fd.nu[k - 1][i] - art.G[k - 1].col(i).dot(alpha_plus.vector());
+      beta_k[i] = fd.nu[k - 1][i] - art.G[k - 1].col(i).dot(alpha_plus.vector());
     alpha = AccelerationT<S>(Vec6<S>(
-        alpha_plus.vector() + B.hinge.H_star_times(x.theta.data() + B.q_offset, b).vector()));
+        alpha_plus.vector() + B.hinge.H_star_times(x.theta.data() + B.q_offset, beta_k).vector()));
   }
 }
 

@@ -35,7 +35,7 @@ struct WorkspaceT {
         hinge_cos(m.n()) {}
   /// A workspace whose parts are sized by the first function that fills them (each filling
   /// function calls size()), so that it holds only what the computation uses: the `soa`
-  /// command on a chain of a million bodies (448 bytes a body in all; poses alone 96).
+  /// command on a chain of a million bodies (no poses unless asked for).
   static WorkspaceT lazy() { return WorkspaceT(); }
 
   /// Sizes \p part for \p m when it is not (once: nothing is allocated per call after).

@@ -10,11 +10,13 @@ namespace soa::reference {
 
 /// Sweep 3 of the articulated body algorithm, base to tip from \p alpha_base (lesson 8,
 /// section 2): \f$\dot\beta(k)\f$ into \p beta_dot, \f$\alpha^+(k)\f$ and \f$\alpha(k)\f$
-/// into \p ws, from \f$\nu(k)\f$ and \f$G(k)\f$; \p coriolis adds \f$a(k)\f$ (false for
-/// \f$\mathcal M^{-1} T\f$, lesson 8, section 4).
+/// into \p ws, from \f$\nu(k)\f$, \f$G(k)\f$ and the Coriolis terms \p a (entry k - 1 is
+/// \f$a(k)\f$: ws.a for the forward dynamics, ws.a_rest for \f$\mathcal M^{-1} T\f$,
+/// lesson 8, section 4).
 template <class S>
 void hinge_accelerations(const ModelT<S>& m, const StateT<S>& x, const AccelerationT<S>& alpha_base,
-                         bool coriolis, WorkspaceT<S>& ws, VecX<S>& beta_dot) {
+                         const std::vector<AccelerationT<S>>& a, WorkspaceT<S>& ws,
+                         VecX<S>& beta_dot) {
   AccelerationT<S> alpha_next = alpha_base;
   for (int k = m.n(); k >= 1; --k) {
     const BodyT<S>& B = m.body(k);
@@ -26,8 +28,7 @@ void hinge_accelerations(const ModelT<S>& m, const StateT<S>& x, const Accelerat
     // \alpha(k) = \alpha^+(k) + H^*(k)\,\dot\beta(k) + a(k)
     const AccelerationT<S> Hs_beta_dot(
         B.hinge.H_star_times(x.theta.data() + B.q_offset, beta_dot.data() + B.v_offset).vector());
-    ws.alpha[k - 1] = ws.alpha_plus[k - 1] + Hs_beta_dot;
-    if (coriolis) ws.alpha[k - 1] += ws.a[k - 1];
+    ws.alpha[k - 1] = ws.alpha_plus[k - 1] + Hs_beta_dot + a[k - 1];
     alpha_next = ws.alpha[k - 1];
   }
 }
@@ -63,7 +64,7 @@ void forward_dynamics(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     ws.z_plus[k - 1] = ws.z[k - 1] + ForceT<S>(Vec6<S>(ws.G[k - 1] * ws.epsilon[k - 1]));
   }
   // \alpha(n+1) = [0;\ -g]
-  hinge_accelerations(m, x, gravity_base_acceleration(m), true, ws, beta_dot);
+  hinge_accelerations(m, x, gravity_base_acceleration(m), ws.a, ws, beta_dot);
 }
 
 }  // namespace soa::reference

@@ -22,8 +22,8 @@ void innovations_factor_times(const ModelT<S>& m, const StateT<S>& x, const VecX
     if (k == 1) {
       ws.phi_K_v[0] = ForceT<S>();
     } else {
-      const BodyT<S>& Bp = m.body(k - 1);
-      const Vec6<S> Gv = ws.G[k - 2] * v.segment(Bp.v_offset, Bp.hinge.nv());
+      const BodyT<S>& B_prev = m.body(k - 1);
+      const Vec6<S> Gv = ws.G[k - 2] * v.segment(B_prev.v_offset, B_prev.hinge.nv());
       ws.phi_K_v[k - 1] = ws.phi[k - 2].apply(ws.phi_K_v[k - 2] + ForceT<S>(Gv));
     }
     // y(k) = v(k) + H(k)\,(\phi K v)(k)

@@ -27,8 +27,8 @@ void articulated_solve(const ModelT<S>& m, const StateT<S>& x, const VecX<S>& T,
     ws.nu[k - 1] = ws.D_inv[k - 1] * ws.epsilon[k - 1];
     ws.z_plus[k - 1] = ws.z[k - 1] + ForceT<S>(Vec6<S>(ws.G[k - 1] * ws.epsilon[k - 1]));
   }
-  // \alpha(n+1) = 0; \quad (\mathcal M^{-1} T)(k) = \nu(k) - G^*(k)\,\alpha^+(k)
-  hinge_accelerations(m, x, AccelerationT<S>(), false, ws, out);
+  // \alpha(n+1) = 0, \ a(k) = 0; \quad (\mathcal M^{-1} T)(k) = \nu(k) - G^*(k)\,\alpha^+(k)
+  hinge_accelerations(m, x, AccelerationT<S>(), ws.a_rest, ws, out);
 }
 
 /// \f$\mathcal M^{-1}(\theta)\,T\f$ in O(N): joint_transforms(), articulated_inertias(),

@@ -19,6 +19,7 @@ struct WorkspaceT {
       : phi(m.n()),
         V(m.n()),
         a(m.n()),
+        a_rest(m.n()),
         alpha(m.n()),
         f(m.n()),
         R(m.n()),
@@ -44,6 +45,7 @@ struct WorkspaceT {
   std::vector<PhiT<S>> phi;                  ///< \f$\phi(k+1,k)\f$
   std::vector<VelocityT<S>> V;               ///< \f$V(k)\f$
   std::vector<AccelerationT<S>> a;           ///< \f$a(k)\f$, the Coriolis term
+  std::vector<AccelerationT<S>> a_rest;      ///< \f$a(k) = 0\f$, at rest (articulated_solve())
   std::vector<AccelerationT<S>> alpha;       ///< \f$\alpha(k)\f$
   std::vector<ForceT<S>> f;                  ///< \f$f(k)\f$, the inter-body force
   std::vector<SpatialInertiaT<S>> R;         ///< \f$R(k)\f$, the composite inertia
