@@ -34,7 +34,8 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 # missing ones are installed.
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
-  libjs-three chromium pkgconf liburdfdom-dev libtinyxml-dev libsundials-dev libsleef-dev
+  libjs-three chromium pkgconf liburdfdom-dev libtinyxml-dev libsundials-dev libsleef-dev \
+  ccache
 ifeq ($(SANITIZE),clang)
   PACKAGES += clang
 endif
@@ -81,7 +82,7 @@ test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure --no-tests=error -j $(JOBS) $(if $(TESTS),-R '$(TESTS)')
 
 # One table per lesson: each exercise pass / FAIL (with what went wrong) / not done. Never
-# stops the build. Its own build, build/exercises: the library (double only) and the exercise
+# stops the build. Its own build, build/exercises: the library and the exercise
 # tests, at -O1 -g with Eigen's assertions on; the student's code also with AddressSanitizer
 # + UBSan where the compiler has them, so that a mistake stops at the student's own line,
 # and with the student's warnings (kept by tests/exercises/keep_diagnostics.sh, shown in the

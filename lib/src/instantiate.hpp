@@ -1,6 +1,5 @@
-// Explicit instantiations of the library's templates in the three precisions the course
-// uses (the list is soa/instantiations.hpp): a template that does not compile for float or
-// long double fails here. One generated unit per precision and group (instantiate.cpp.in,
+// Explicit instantiations of the library's templates in the precisions of SOA_PRECISIONS
+// (the list is soa/instantiations.hpp; lib/CMakeLists.txt). One generated unit per precision and group (instantiate.cpp.in,
 // lib/CMakeLists.txt), so that they compile in parallel and each is small enough for GCC to
 // inline what the recursions call.
 #pragma once

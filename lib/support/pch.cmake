@@ -10,6 +10,11 @@
 # -O3 on Eigen-heavy test code doubles the build. The library, the `soa` command, the labs
 # and the benchmarks keep the build type's flags.
 set(SOA_CHECK_OPT $<$<CONFIG:Release>:-O1>)
+# Through ccache (the top-level CMakeLists.txt), GCC's preprocessed output must name the
+# precompiled header for ccache to cache the units that use one.
+if(CMAKE_CXX_COMPILER_LAUNCHER MATCHES "ccache" AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  list(APPEND SOA_CHECK_OPT -fpch-preprocess)
+endif()
 
 # `make exercises` compiles the student's code (the `plain` targets, with their precompiled
 # header) with AddressSanitizer and UBSan, so that a mistake stops at the student's own line;

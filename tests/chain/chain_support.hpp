@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "precisions.hpp"
 #include "random_chain.hpp"
 
 namespace soa::test {
@@ -97,24 +98,6 @@ auto derivative(F x, double h) {
   const V d = (8.0 * (x(h) - x(-h)) - (x(2 * h) - x(-2 * h))) / (12.0 * h);
   return d;
 }
-
-/// The precisions of the typed (core) tests.
-using Scalars = ::testing::Types<float, double, long double>;
-
-template <class S>
-std::string scalar_name() {
-  if (std::is_same_v<S, float>) return "float";
-  if (std::is_same_v<S, double>) return "double";
-  return "long_double";
-}
-
-/// Test-name generator for TYPED_TEST_SUITE: `chain_Precision/double.Recursions`.
-struct ScalarNames {
-  template <class S>
-  static std::string GetName(int) {
-    return scalar_name<S>();
-  }
-};
 
 /// \f$\|a - b\| / s\f$ in double, for a residual relative to a bound \p s on the terms.
 template <class A, class B>

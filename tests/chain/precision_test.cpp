@@ -12,7 +12,7 @@ namespace {
 
 template <class S>
 class chain_Precision : public ::testing::Test {};
-TYPED_TEST_SUITE(chain_Precision, Scalars, ScalarNames);
+TYPED_TEST_SUITE(chain_Precision, Precisions, ScalarNames);
 
 constexpr int kMaxBodies = 8;
 constexpr double kTol = 2.0;  // as in operators_test.cpp (worst seen: 0.05)

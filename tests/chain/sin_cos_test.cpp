@@ -115,7 +115,7 @@ TEST(chain_SinCos, EveryLengthAnglesOnTheirOwnInPlace) {
 
 template <class S>
 class chain_SinCosPhi : public ::testing::Test {};
-TYPED_TEST_SUITE(chain_SinCosPhi, Scalars, ScalarNames);
+TYPED_TEST_SUITE(chain_SinCosPhi, Precisions, ScalarNames);
 
 constexpr int kMaxBodies = 12;
 

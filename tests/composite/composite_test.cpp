@@ -224,7 +224,7 @@ TEST(composite_MassMatrix, FastPathsAgreeWithTheGeneralPath) {
 
 template <class S>
 class composite_Precision : public ::testing::Test {};
-TYPED_TEST_SUITE(composite_Precision, Scalars, ScalarNames);
+TYPED_TEST_SUITE(composite_Precision, Precisions, ScalarNames);
 
 TYPED_TEST(composite_Precision, CrbMassMatrix) {
   using S = TypeParam;

@@ -70,7 +70,7 @@ template <class A, class B>
 
 constexpr int kInterfaceCases = 100;
 
-// --- The expression forms, in the three precisions --------------------------------------
+// --- The expression forms -----------------------------------------------------------
 
 template <class S>
 class spatial_Interface : public ::testing::Test {};

@@ -71,7 +71,7 @@ auto central(const F& f, double h) {
 
 template <class S>
 class spatial_SE3 : public ::testing::Test {};
-TYPED_TEST_SUITE(spatial_SE3, Scalars, ScalarNames);
+TYPED_TEST_SUITE(spatial_SE3, Precisions, ScalarNames);
 
 // exp(xi^) by the closed form (lesson 1 eq. SE3-exp) = the dense 4x4 exponential, any angle.
 TYPED_TEST(spatial_SE3, ExpIsTheMatrixExponential) {

@@ -1,33 +1,12 @@
 /// \file
-/// Shared by the lesson 1-2 property tests: the three precisions of the typed tests, and
-/// tolerances written in units of the machine epsilon of the precision under test.
+/// Shared by the lesson 1-2 property tests: tolerances written in units of the machine epsilon
+/// of the precision under test (the precisions: precisions.hpp).
 #pragma once
 
-#include <string>
-#include <type_traits>
-
+#include "precisions.hpp"
 #include "property.hpp"
 
 namespace soa::test {
-
-/// The precisions of the typed (core) tests.
-using Scalars = ::testing::Types<float, double, long double>;
-
-/// The name of a precision, for test names and worst-residual reports.
-template <class S>
-std::string scalar_name() {
-  if (std::is_same_v<S, float>) return "float";
-  if (std::is_same_v<S, double>) return "double";
-  return "long_double";
-}
-
-/// Test-name generator for TYPED_TEST_SUITE: `spatial_Phi/double.Product`.
-struct ScalarNames {
-  template <class S>
-  static std::string GetName(int) {
-    return scalar_name<S>();
-  }
-};
 
 /// \p k machine epsilons of precision S, as a double (Worst keeps residuals in double).
 template <class S>

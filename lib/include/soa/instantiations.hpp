@@ -1,5 +1,5 @@
-// The library's templates, compiled once in lib/src in the three precisions the course uses
-// (float, double, long double). SOA_TEMPLATES(extern, S) below declares them `extern` for
+// The library's templates, compiled once in lib/src in the precisions the library is built
+// for (SOA_PRECISIONS: double by default, float and long double on request). SOA_TEMPLATES(extern, S) below declares them `extern` for
 // every program that includes the library's headers, which then links the library's copy
 // instead of compiling the algorithms' Eigen code again (most of a test's compile time);
 // lib/src/instantiate.hpp expands the same list without `extern` to define them.
