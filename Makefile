@@ -1,5 +1,5 @@
 # SOA Course Companion — the commands students and instructors type.
-#   make run        build everything, run the lesson tour (outputs under build/course/)
+#   make run        build and run the lesson tour, lesson by lesson (outputs under build/course/)
 #   make test       library tests, lesson checks, exercise tests against the solutions
 #   make exercises  the exercise tests against exercises/ (a pass/fail table; never fails);
 #                   LESSON=4 or EX=4.2 for one lesson or one exercise, HINT=4.7 for the
@@ -75,18 +75,22 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-run: build
-	cmake --build $(BUILD_DIR) --target tour
+# Lesson by lesson (lessons/tour.sh): the library and lesson 1, then the rest in one build
+# while each lesson runs as soon as its program is linked; the labs last.
+run: configure
+	@sh lessons/tour.sh $(BUILD_DIR) $(JOBS)
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure --no-tests=error -j $(JOBS) $(if $(TESTS),-R '$(TESTS)')
 
 # One table per lesson: each exercise pass / FAIL (with what went wrong) / not done. Never
-# stops the build. Its own build, build/exercises: the library and the exercise
-# tests, at -O1 -g with Eigen's assertions on; the student's code also with AddressSanitizer
-# + UBSan where the compiler has them, so that a mistake stops at the student's own line,
-# and with the student's warnings (kept by tests/exercises/keep_diagnostics.sh, shown in the
-# rows). make test runs this same recipe on the solutions (exercises.student-config).
+# stops the build. Its own build, build/exercises: the library (without the simulation
+# group, which no exercise uses) and the exercise tests, at -O1 with line tables (-g1) and
+# Eigen's assertions on; the student's code also with AddressSanitizer + UBSan where the
+# compiler has them, so that a mistake stops at the student's own line, and with the
+# student's warnings (kept by tests/exercises/keep_diagnostics.sh, shown in the rows). Lesson
+# by lesson: the first lesson's table comes after the library and that lesson's checker are
+# built. make test runs this same recipe on the solutions (exercises.student-config).
 EX_DIR ?= build/exercises
 # The folder holding the student's NN-topic/*.cpp: exercises/ itself. The test of this
 # configuration (tests/exercises/student_config.sh) points it at the solutions.
@@ -111,17 +115,19 @@ else
 	  c++ -fsanitize=address,undefined $$t/a.cpp -o $$t/a 2>/dev/null && $$t/a && san=ON; \
 	  rm -rf $$t; \
 	  cmake -S . -B $(EX_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSOA_SANITIZE_STUDENT=$$san \
-	    -DSOA_PRECISIONS=double -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
+	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DSOA_SANITIZE_STUDENT=$$san \
+	    -DSOA_PRECISIONS=double "-DSOA_GROUPS=CORE;DENSE;ID;FD;MINV" \
+	    -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
 	    -DSOA_EXERCISES_DIR=$(EX_SRC_DIR) \
 	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
 	    || { cat $(EX_DIR).cmake.log; exit 1; }; \
 	fi
-	@echo "Building the library and the exercise tests in $(EX_DIR) (the first time takes a few minutes)"
-	@cmake --build $(EX_DIR) -j $(JOBS) --target soa_exercise_main $(foreach n,$(EX_NNS),ex$(n)-tests) \
-	  >$(EX_DIR)/common.log 2>&1 || { tail -30 $(EX_DIR)/common.log; exit 1; }
+	@[ -f $(EX_DIR)/lib/libsoa.a ] \
+	  || echo "Building the library and the exercise tests in $(EX_DIR), lesson by lesson (the first time takes a few minutes)"
 	@for nn in $(EX_NNS); do \
 	  dir=$$(ls -d exercises/$$nn-*); \
+	  cmake --build $(EX_DIR) -j $(JOBS) --target soa_exercise_main ex$$nn-tests \
+	    >$(EX_DIR)/common.log 2>&1 || { tail -30 $(EX_DIR)/common.log; exit 1; }; \
 	  echo; echo "== Lesson $$nn exercises ($$dir) =="; \
 	  rm -f $(EX_DIR)/tests/ex$$nn-exercises; \
 	  if cmake --build $(EX_DIR) -j $(JOBS) --target ex$$nn-exercises \

@@ -112,16 +112,55 @@
 // A precision left out of the library's build (SOA_PRECISIONS, lib/CMakeLists.txt) is not
 // declared extern: SOA_LIB_LACKS_<precision> tells every program linking the library, and a
 // program using that precision compiles the templates itself (slower to build, same code).
+// A group left out (SOA_GROUPS: `make exercises` leaves out SIM, which no exercise uses) is
+// not declared extern either, by SOA_LIB_LACKS_<group>.
 #ifndef SOA_INSTANTIATING
+#ifdef SOA_LIB_LACKS_CORE
+#define SOA_EXTERN_CORE(S)
+#else
+#define SOA_EXTERN_CORE(S) SOA_TEMPLATES_CORE(extern, S)
+#endif
+#ifdef SOA_LIB_LACKS_DENSE
+#define SOA_EXTERN_DENSE(S)
+#else
+#define SOA_EXTERN_DENSE(S) SOA_TEMPLATES_DENSE(extern, S)
+#endif
+#ifdef SOA_LIB_LACKS_ID
+#define SOA_EXTERN_ID(S)
+#else
+#define SOA_EXTERN_ID(S) SOA_TEMPLATES_ID(extern, S)
+#endif
+#ifdef SOA_LIB_LACKS_FD
+#define SOA_EXTERN_FD(S)
+#else
+#define SOA_EXTERN_FD(S) SOA_TEMPLATES_FD(extern, S)
+#endif
+#ifdef SOA_LIB_LACKS_MINV
+#define SOA_EXTERN_MINV(S)
+#else
+#define SOA_EXTERN_MINV(S) SOA_TEMPLATES_MINV(extern, S)
+#endif
+#ifdef SOA_LIB_LACKS_SIM
+#define SOA_EXTERN_SIM(S)
+#else
+#define SOA_EXTERN_SIM(S) SOA_TEMPLATES_SIM(extern, S)
+#endif
+#define SOA_EXTERN_TEMPLATES(S) \
+  SOA_EXTERN_CORE(S)            \
+  SOA_EXTERN_DENSE(S)           \
+  SOA_EXTERN_ID(S)              \
+  SOA_EXTERN_FD(S)              \
+  SOA_EXTERN_MINV(S)            \
+  SOA_EXTERN_SIM(S)
 namespace soa {
 #ifndef SOA_LIB_LACKS_FLOAT
-SOA_TEMPLATES(extern, float)
+SOA_EXTERN_TEMPLATES(float)
 #endif
 #ifndef SOA_LIB_LACKS_DOUBLE
-SOA_TEMPLATES(extern, double)
+SOA_EXTERN_TEMPLATES(double)
 #endif
 #ifndef SOA_LIB_LACKS_LONG_DOUBLE
-SOA_TEMPLATES(extern, long double)
+SOA_EXTERN_TEMPLATES(long double)
 #endif
 }  // namespace soa
 #endif
