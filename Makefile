@@ -116,7 +116,7 @@ else
 	  rm -rf $$t; \
 	  cmake -S . -B $(EX_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DSOA_SANITIZE_STUDENT=$$san \
-	    -DSOA_PRECISIONS=double "-DSOA_GROUPS=CORE;DENSE;ID;FD;MINV" \
+	    "-DSOA_GROUPS=CORE;DENSE;ID;FD;MINV" \
 	    -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
 	    -DSOA_EXERCISES_DIR=$(EX_SRC_DIR) \
 	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
@@ -151,12 +151,12 @@ docs: build
 	cmake --build $(BUILD_DIR) --target docs
 
 # Then the speed targets in both configurations: this build (SOA_NATIVE, on by default) and
-# build/portable (SOA_NATIVE=OFF, double only), judged in build/bench/speed.md.
+# build/portable (SOA_NATIVE=OFF), judged in build/bench/speed.md.
 PORT_DIR := build/portable
 bench: configure
 	@rm -f build/bench/targets_*.json build/bench/speed.md
 	@cmake -S . -B $(PORT_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOA_NATIVE=OFF \
-	  -DSOA_PRECISIONS=double -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(PORT_DIR).cmake.log \
+	  -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(PORT_DIR).cmake.log \
 	  || { cat $(PORT_DIR).cmake.log; exit 1; }
 	cmake --build $(PORT_DIR) -j $(JOBS) --target chain_bench forward_bench
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target bench
@@ -165,13 +165,13 @@ bench: configure
 	cmake --build $(BUILD_DIR) --target bench_report
 
 # The library side by side with Orocos KDL and MuJoCo (tests/bench/compare/): its own build,
-# build/compare (double and long double only, SOA_COMPARE=ON), then the program writes
+# build/compare (SOA_COMPARE=ON), then the program writes
 # build/bench/compare.md and compare.csv.
 CMP_DIR := build/compare
 compare: compare-deps
 	@mkdir -p build
 	@cmake -S . -B $(CMP_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOA_COMPARE=ON \
-	  "-DSOA_PRECISIONS=double;long_double" -DSOA_OUTPUT_DIR=$(CURDIR)/build \
+	  -DSOA_OUTPUT_DIR=$(CURDIR)/build \
 	  >$(CMP_DIR).cmake.log || { cat $(CMP_DIR).cmake.log; exit 1; }
 	cmake --build $(CMP_DIR) -j $(JOBS) --target compare_report
 

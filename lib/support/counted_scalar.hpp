@@ -1,7 +1,7 @@
 /// \file
 /// soa::test::Counted: a double that counts the operations done on it, for the flop counts of
 /// the recursions. The library's templates instantiate with it implicitly (its explicit
-/// instantiations are for the built-in precisions only), and Eigen has no packet type for
+/// instantiations are for float, double and long double only), and Eigen has no packet type for
 /// it: every expression kernel runs coefficient by coefficient, so the counts are the scalar
 /// operations of the code as written (a vectorized multiply of the double build counts once per
 /// lane). Counted arithmetic is IEEE double arithmetic, one rounding per operation: the results

@@ -1,5 +1,5 @@
-// The library's templates, compiled once in lib/src in the precisions the library is built
-// for (SOA_PRECISIONS: double by default, float and long double on request). SOA_TEMPLATES(extern, S) below declares them `extern` for
+// The library's templates, compiled once in lib/src in each precision: double (soa), float
+// (soa_float) and long double (soa_long_double). SOA_TEMPLATES(extern, S) below declares them `extern` for
 // every program that includes the library's headers, which then links the library's copy
 // instead of compiling the algorithms' Eigen code again (most of a test's compile time);
 // lib/src/instantiate.hpp expands the same list without `extern` to define them.
@@ -109,11 +109,12 @@
   SOA_TEMPLATES_SIM(PREFIX, S)
 // clang-format on
 
-// A precision left out of the library's build (SOA_PRECISIONS, lib/CMakeLists.txt) is not
-// declared extern: SOA_LIB_LACKS_<precision> tells every program linking the library, and a
-// program using that precision compiles the templates itself (slower to build, same code).
-// A group left out (SOA_GROUPS: `make exercises` leaves out SIM, which no exercise uses) is
-// not declared extern either, by SOA_LIB_LACKS_<group>.
+// double is declared extern to every program linking the library (soa); float and long
+// double to the programs linking soa_float or soa_long_double (SOA_LIB_HAS_<precision>,
+// lib/CMakeLists.txt). A program using a precision it does not link compiles the templates
+// itself (slower to build, same code). A group left out of the library (SOA_GROUPS: `make
+// exercises` leaves out SIM, which no exercise uses) is not declared extern either, by
+// SOA_LIB_LACKS_<group>.
 #ifndef SOA_INSTANTIATING
 #ifdef SOA_LIB_LACKS_CORE
 #define SOA_EXTERN_CORE(S)
@@ -153,13 +154,11 @@
   SOA_EXTERN_MINV(S)            \
   SOA_EXTERN_SIM(S)
 namespace soa {
-#ifndef SOA_LIB_LACKS_FLOAT
+#ifdef SOA_LIB_HAS_FLOAT
 SOA_EXTERN_TEMPLATES(float)
 #endif
-#ifndef SOA_LIB_LACKS_DOUBLE
 SOA_EXTERN_TEMPLATES(double)
-#endif
-#ifndef SOA_LIB_LACKS_LONG_DOUBLE
+#ifdef SOA_LIB_HAS_LONG_DOUBLE
 SOA_EXTERN_TEMPLATES(long double)
 #endif
 }  // namespace soa
