@@ -35,7 +35,9 @@ build_failed() {
 first=$(grep -m1 '^lesson|' "$list")
 first_target=$(echo "$first" | cut -d'|' -f3)
 echo
-echo "Building the library and lesson 1 (a few minutes the first time; the build's output: $log)"
+if cmake --build "$build" -- -n "$first_target" 2>/dev/null | grep -q 'Linking'; then
+  echo "Building the library and lesson 1 (a few minutes the first time; the build's output: $log)"
+fi
 cmake --build "$build" -j "$jobs" --target "$first_target" >"$log" 2>&1 \
   || build_failed "lesson 1"
 echo

@@ -109,12 +109,11 @@
   SOA_TEMPLATES_SIM(PREFIX, S)
 // clang-format on
 
-// double is declared extern to every program linking the library (soa); float and long
-// double to the programs linking soa_float or soa_long_double (SOA_LIB_HAS_<precision>,
-// lib/CMakeLists.txt). A program using a precision it does not link compiles the templates
-// itself (slower to build, same code). A group left out of the library (SOA_GROUPS: `make
-// exercises` leaves out SIM, which no exercise uses) is not declared extern either, by
-// SOA_LIB_LACKS_<group>.
+// All three precisions are declared extern: a program computing in float or long double
+// links soa_float or soa_long_double (lib/CMakeLists.txt), one in double soa alone. A group
+// left out of the library (SOA_GROUPS: `make exercises` leaves out SIM, which no exercise
+// uses) is not declared extern (SOA_LIB_LACKS_<group>): a program using it compiles the
+// templates itself.
 #ifndef SOA_INSTANTIATING
 #ifdef SOA_LIB_LACKS_CORE
 #define SOA_EXTERN_CORE(S)
@@ -154,12 +153,8 @@
   SOA_EXTERN_MINV(S)            \
   SOA_EXTERN_SIM(S)
 namespace soa {
-#ifdef SOA_LIB_HAS_FLOAT
 SOA_EXTERN_TEMPLATES(float)
-#endif
 SOA_EXTERN_TEMPLATES(double)
-#ifdef SOA_LIB_HAS_LONG_DOUBLE
 SOA_EXTERN_TEMPLATES(long double)
-#endif
 }  // namespace soa
 #endif
