@@ -1,10 +1,10 @@
 // Lesson 5 exercise tests: each exercise of exercises/05-mass-matrix/exercises.hpp against the
-// library, on soa::test::kCases random chains from the fixed seed (1 to 9 bodies, hinge types
-// drawn at random unless the exercise is for revolute or prismatic chains). Each check names
-// its quantity, and its catalogue of classic mistakes is computed from the reference
-// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students'
-// exercises (make exercises) and the solutions with planted mistakes
-// (05-mass-matrix.plant.cmake).
+// library, on soa::test::kCases random chains from the fixed seed (1 to 9 bodies, hinge types drawn
+// at random unless the exercise is for revolute or prismatic chains). Each check names its
+// quantity, and its catalogue of classic mistakes is computed from the reference
+// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students' exercises
+// (make exercises) and the solutions with planted mistakes (the "planted mistakes" blocks,
+// tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -114,6 +114,18 @@ std::vector<Mat6> composite_variant(const soa::Model& m, const std::vector<soa::
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 5.1
+soa_plant(5.1 neighbour-index
+  FIND [=[transform(phi[i - 1], R[i - 1])]=]
+  WRONG [=[transform(phi[i], R[i - 1])]=] TYPE [=[SpatialInertia]=]
+  EXPECT [=[likely mistake \(neighbour index\): your R\(k\) moves R\(k-1\) with phi\(k\+1,k\)]=])
+soa_plant(5.1 unmoved
+  FIND [=[transform(phi[i - 1], R[i - 1])]=]
+  WRONG [=[R[i - 1]]=] TYPE [=[SpatialInertia]=]
+  EXPECT [=[likely mistake \(wrong frame\): your R\(k\) adds R\(k-1\) as it is]=])
+*/
+// clang-format on
 // 5.1: the composite inertias from phi, against soa::composite_inertias. Each R(k) is held
 // to rounding relative to its own size, so every body of every chain is a case of the check.
 TEST(Exercise5_1_CompositeInertias, MatchesLibrary) {
@@ -189,6 +201,20 @@ MatX block_diagonal(const soa::Model& m, const VecX& theta, const F& inertia_of)
   return D;
 }
 
+// clang-format off
+/* planted mistakes of 5.2
+soa_plant(5.2 own-inertia
+  FIND [=[R[std::size_t(k - 1)].matrix() * Hs]=]
+  WRONG [=[B.M.matrix() * Hs]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your M\(k,k\) uses M\(k\), body k alone]=])
+# Not in the catalogue: the prismatic joint map doubled. The report gives the symptom.
+soa_plant(5.2 prismatic-doubled
+  FIND [=[B.hinge.H_star(theta.data() + B.q_offset)]=]
+  WRONG [=[B.hinge.type == HingeType::Prismatic ? MatX<double>(2.0 * B.hinge.H_star(theta.data() + B.q_offset)) : MatX<double>(B.hinge.H_star(theta.data() + B.q_offset))]=]
+  TYPE [=[MatX<double>]=]
+  EXPECT [=[symptom: it fails only where a hinge is prismatic: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 5.2: the diagonal blocks H(k) R(k) H*(k), against soa::OperatorsT::mass_matrix().
 TEST(Exercise5_2_MassMatrixDiagonal, MatchesOperators) {
   Random<double> rnd;
@@ -275,6 +301,20 @@ MatX crb_variant(const soa::Model& m, const VecX& theta, Crb v) {
   return M;
 }
 
+// clang-format off
+/* planted mistakes of 5.3
+soa_plant(5.3 transpose
+  FIND [=[phi[std::size_t(i - 2)].apply(F)]=]
+  WRONG [=[Force(Vec6<double>(phi[std::size_t(i-2)].matrix().transpose() * F.vector()))]=]
+  TYPE [=[Force]=]
+  EXPECT [=[likely mistake \(transpose\): your force R\(j\) H\*\(j\) is carried inboard with phi\*]=])
+soa_plant(5.3 degrees
+  FIND [=[theta[B.q_offset] * B.hinge.axis]=]
+  WRONG [=[theta[B.q_offset] * 3.14159265358979323846 / 180 * B.hinge.axis]=]
+  TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(degrees\): your phi\(k\+1,k\) takes theta in degrees]=])
+*/
+// clang-format on
 // 5.3: the CRB mass matrix of random revolute chains, against
 // soa::OperatorsT::mass_matrix().
 TEST(Exercise5_3_CrbMassMatrixRevolute, MatchesOperators) {
@@ -338,6 +378,14 @@ MatX lyapunov(const soa::Operators& op, bool transposed) {
   return R;
 }
 
+// clang-format off
+/* planted mistakes of 5.4
+soa_plant(5.4 sign
+  FIND [=[R + phi_t * R + R * phi_t.transpose()]=]
+  WRONG [=[R - phi_t * R - R * phi_t.transpose()]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(sign\): your result subtracts phi~ R and R phi~\*]=])
+*/
+// clang-format on
 // 5.4: R + phi~ R + R phi~* from the block Lyapunov recursion, against phi M phi*.
 TEST(Exercise5_4_Decomposition, MatchesPhiMPhiStar) {
   Random<double> rnd;
@@ -410,6 +458,16 @@ MatX blocks_variant(const std::vector<soa::Phi>& phi, const Inertias& R, Block v
   return out;
 }
 
+// clang-format off
+/* planted mistakes of 5.5
+soa_plant(5.5 transpose
+  FIND [=[phi_M_phi_star_block(phi, R, j, i).transpose()]=]
+  WRONG [=[phi_M_phi_star_block(phi, R, j, i)]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 4 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your block \(i,j\), i < j, is block \(j,i\) itself]=]
+  NAMED [=[likely mistake \(transpose\): your block \(i,j\), i < j, is block \(j,i\) itself]=])
+*/
+// clang-format on
 // 5.5: block (i, j) of phi M phi* for every i, j, assembled, against the dense phi M phi*.
 TEST(Exercise5_5_PhiMPhiStarBlock, MatchesPhiMPhiStar) {
   Random<double> rnd;
@@ -456,6 +514,16 @@ TEST(Exercise5_5_PhiMPhiStarBlock, MatchesPhiMPhiStar) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 5.6
+soa_plant(5.6 no-angle
+  FIND [=[axis[std::size_t(i - 1)].dot(axis[std::size_t(j - 1)])]=]
+  WRONG [=[1.0]=] TYPE [=[double]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your M\(i,j\) leaves out a_i \. a_j]=]
+  NAMED [=[likely mistake \(dropped term\): your M\(i,j\) leaves out a_i \. a_j]=])
+*/
+// clang-format on
 // 5.6: the mass matrix of random chains of sliders (every hinge prismatic), predicted from the
 // masses and the axes in inertial coordinates, against soa::mass_matrix_crb. Every fourth
 // chain has all its axes parallel.
