@@ -615,3 +615,96 @@ TEST(Exercise5_6_SliderMassMatrix, MatchesCrb) {
         mistakes, soa::test::dof_blocks(m, "M"));
   }
 }
+
+// A block column of the mass matrix (5.7) with a classic mistake in it, as the whole nv x nv
+// matrix of its columns.
+enum class Column { OutboardPhi, InboardPhiStar, UpperDropped, OuterInertia };
+MatX column_variant(const MassCase& c, Column v) {
+  const soa::Model& m = c.m;
+  auto Hs = [&](int k) {
+    const soa::Body& B = m.body(k);
+    return MatX(B.hinge.H_star(c.x.theta.data() + B.q_offset));
+  };
+  auto P = [&](int k) { return Mat6(c.ws.phi[std::size_t(k - 1)].matrix()); };  // phi(k+1,k)
+  auto R = [&](int k) { return Mat6(c.R[std::size_t(k - 1)].matrix()); };
+  MatX M = MatX::Zero(m.nv(), m.nv());
+  for (int j = 1; j <= m.n(); ++j) {
+    const soa::Body& Bj = m.body(j);
+    auto column = M.middleCols(Bj.v_offset, Bj.hinge.nv());
+    MatX F = R(j) * Hs(j);
+    for (int i = j; i <= m.n(); ++i) {
+      if (i > j)
+        F = v == Column::InboardPhiStar ? MatX(P(i - 1).transpose() * F) : MatX(P(i - 1) * F);
+      column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) = Hs(i).transpose() * F;
+    }
+    if (v == Column::UpperDropped) continue;
+    MatX V = Hs(j);
+    for (int i = j - 1; i >= 1; --i) {
+      V = v == Column::OutboardPhi ? MatX(P(i) * V) : MatX(P(i).transpose() * V);
+      const Mat6 Ri = v == Column::OuterInertia ? R(j) : R(i);
+      column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) = Hs(i).transpose() * Ri * V;
+    }
+  }
+  return M;
+}
+
+// clang-format off
+/* planted mistakes of 5.7
+soa_plant(5.7 transpose
+  FIND [=[phi[std::size_t(i - 1)].matrix().transpose() * V]=]
+  WRONG [=[phi[std::size_t(i - 1)].matrix() * V]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your motions H\*\(j\) are carried outboard with phi\(i\+1,i\)]=])
+*/
+// clang-format on
+// 5.7: every block column j of the mass matrix, against soa::OperatorsT::mass_matrix().
+TEST(Exercise5_7_MassMatrixColumn, MatchesOperators) {
+  Random<double> rnd;
+  Check check("M(., j), the block columns of the mass matrix", 64 * kEps);
+  for (int i = 0; i < kCases; ++i) {
+    const MassCase c = draw_mass_case(rnd, i);
+    const soa::Model& m = c.m;
+    const MatX M_ref = soa::Operators::build(m, c.x).mass_matrix();
+    auto inputs = [&] {
+      return c.code() + MassCase::composite_code() +
+             "// for j = 1..n:\nauto column = soa::ex05::mass_matrix_column(m, x.theta, ws.phi, "
+             "R, j);\n";
+    };
+    MatX got = MatX::Zero(m.nv(), m.nv());
+    bool shaped = true;
+    for (int j = 1; j <= m.n() && shaped; ++j) {
+      const soa::Body& B = m.body(j);
+      const MatX column = soa::ex05::mass_matrix_column(m, c.x.theta, c.ws.phi, c.R, j);
+      if (column.rows() != m.nv() || column.cols() != B.hinge.nv()) {
+        check.add(i, column, M_ref.middleCols(B.v_offset, B.hinge.nv()), M_ref.norm(), c.tags,
+                  inputs);
+        shaped = false;
+        break;
+      }
+      got.middleCols(B.v_offset, B.hinge.nv()) = column;
+    }
+    if (!shaped) continue;
+    auto mistakes = [&] {
+      auto v = [&](Column e) { return column_variant(c, e); };
+      return Mistakes{
+          soa::test::negated(M_ref, "your columns have the opposite sign"),
+          {"transpose",
+           "your motions H*(j) are carried outboard with phi(i+1,i): motions move outward "
+           "with phi*, phi[i-1].matrix().transpose()",
+           v(Column::OutboardPhi)},
+          {"transpose",
+           "your forces R(j) H*(j) are carried inboard with phi*(i,i-1): forces move inward "
+           "with phi, phi[i-2]",
+           v(Column::InboardPhiStar)},
+          {"dropped term",
+           "the rows of your column above body j are zero: M(i,j) = H(i) R(i) phi*(j,i) H*(j) "
+           "for i < j",
+           v(Column::UpperDropped)},
+          {"wrong frame",
+           "above body j your M(i,j) uses R(j): the motion phi*(j,i) H*(j) is at O_i, where "
+           "the composite body 1..i has R(i)",
+           v(Column::OuterInertia)},
+      };
+    };
+    check.add(i, got, M_ref, M_ref.norm(), c.tags, inputs, mistakes, soa::test::dof_blocks(m, "M"));
+  }
+}
