@@ -42,7 +42,7 @@ endif
 # The peers of `make compare` (tests/bench/compare/), only for that target.
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
-.PHONY: all run test exercises stub-sums docs bench compare deps compare-deps configure \
+.PHONY: all run test exercises stubs stub-sums docs bench compare deps compare-deps configure \
   build clean format
 
 all: build
@@ -143,9 +143,11 @@ else
 	done; true
 endif
 
-# After changing a statement or a stub: the checksums of the pristine stubs.
-stub-sums:
-	cmake -DROOT=$(CURDIR) -DWRITE=ON -P tests/exercises/stubs.cmake
+# After adding or changing a statement (exercises/NN-topic/exercises.hpp) or a stub: the stubs
+# the statements lack, the lessons' README tables and the checksums of the pristine stubs
+# (tests/exercises/stubs.sh; docs/adding_an_exercise.md). stub-sums is its old name.
+stubs stub-sums:
+	sh tests/exercises/stubs.sh write $(CURDIR)
 
 docs: build
 	cmake --build $(BUILD_DIR) --target docs

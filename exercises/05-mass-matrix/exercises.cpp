@@ -38,4 +38,11 @@ MatX<double> slider_mass_matrix(const std::vector<double>& mass,
   throw exercise::NotDone("5.6 slider_mass_matrix");
 }
 
+MatX<double> mass_matrix_column(const Model& m, const VecX<double>& theta,
+                                const std::vector<Phi>& phi, const std::vector<SpatialInertia>& R,
+                                int j) {
+  (void)m, (void)theta, (void)phi, (void)R, (void)j;
+  throw exercise::NotDone("5.7 mass_matrix_column");
+}
+
 }  // namespace soa::ex05

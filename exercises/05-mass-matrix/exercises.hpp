@@ -115,4 +115,21 @@ Mat6<double> phi_M_phi_star_block(const std::vector<Phi>& phi, const std::vector
 MatX<double> slider_mass_matrix(const std::vector<double>& mass,
                                 const std::vector<Vec3<double>>& axis);
 
+/// **Exercise 5.7: a block column of the mass matrix, both triangles.**
+/// *Level 2 of 3, about 30 min; uses 5.3.*
+/// Return the nv x n_j block column j of the mass matrix (\p j from 1 to n; every hinge type)
+/// from \f$\phi(k+1,k)\f$ (\p phi, entry k−1) and the composite inertias \f$R(k)\f$ (\p R,
+/// entry k−1, as soa::composite_inertias gives them), without the symmetry of \f$\mathcal M\f$
+/// (lesson 5, section 3, "The mass matrix from the composite inertias"; Jain 2011, chapter 5):
+/// \f[ \mathcal M(i,j) = H(i)\, \phi(i,j)\, R(j)\, H^*(j), \ i \ge j, \qquad
+///     \mathcal M(i,j) = H(i)\, R(i)\, \phi^*(j,i)\, H^*(j), \ i < j . \f]
+/// Below the diagonal, carry the forces \f$R(j) H^*(j)\f$ inboard,
+/// \f$\phi(i,j) = \phi(i,i-1)\, \phi(i-1,j)\f$; above it, carry the motions \f$H^*(j)\f$
+/// outboard, \f$\phi^*(j,i) = \phi^*(i+1,i)\, \phi^*(j,i+1)\f$. The dense \f$H^*(k)\f$
+/// (6 x n_k) is `m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset)`, and the rows of
+/// body i start at `m.body(i).v_offset`. Do not call soa::mass_matrix_crb or soa::OperatorsT.
+MatX<double> mass_matrix_column(const Model& m, const VecX<double>& theta,
+                                const std::vector<Phi>& phi, const std::vector<SpatialInertia>& R,
+                                int j);
+
 }  // namespace soa::ex05

@@ -95,4 +95,29 @@ MatX<double> slider_mass_matrix(const std::vector<double>& mass,
   return M;
 }
 
+// 5.7: M(i,j) = H(i) phi(i,j) R(j) H*(j) for i >= j, forces carried inboard by
+// phi(i,i-1); M(i,j) = H(i) R(i) phi*(j,i) H*(j) for i < j, motions carried outboard by
+// phi*(i+1,i).
+MatX<double> mass_matrix_column(const Model& m, const VecX<double>& theta,
+                                const std::vector<Phi>& phi, const std::vector<SpatialInertia>& R,
+                                int j) {
+  auto H_star = [&](int k) {
+    return MatX<double>(m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset));
+  };
+  const MatX<double> Hj = H_star(j);
+  MatX<double> column(m.nv(), Hj.cols());
+  MatX<double> F = R[std::size_t(j - 1)].matrix() * Hj;  // R(j) H*(j)
+  for (int i = j; i <= m.n(); ++i) {
+    if (i > j) F = phi[std::size_t(i - 2)].matrix() * F;  // phi(i,i-1)
+    column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) = H_star(i).transpose() * F;
+  }
+  MatX<double> V = Hj;  // H*(j)
+  for (int i = j - 1; i >= 1; --i) {
+    V = phi[std::size_t(i - 1)].matrix().transpose() * V;  // phi*(i+1,i)
+    column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) =
+        H_star(i).transpose() * R[std::size_t(i - 1)].matrix() * V;
+  }
+  return column;
+}
+
 }  // namespace soa::ex05

@@ -1,12 +1,12 @@
 // Lesson 1 exercise tests (spatial notation): each exercise of
-// exercises/01-spatial-notation/exercises.hpp against the library, and against a second
-// formulation (the 6x6 matrices, an identity, a round trip), on soa::test::kCases random cases
-// from the fixed seed. Each check names its quantity, and its catalogue of classic mistakes is
-// computed from the reference (tests/support/exercise_check.hpp). The cases vary the features
-// the symptoms need: phi(x,y) with and without a rotation and an offset, bodies with the centre
-// of mass at the frame's origin or away from it, parts of a spatial vector that vanish. Built
-// against the solutions (ctest), the students' exercises (make exercises) and the solutions
-// with planted mistakes (01-spatial-notation.plant.cmake).
+// exercises/01-spatial-notation/exercises.hpp against the library, and against a second formulation
+// (the 6x6 matrices, an identity, a round trip), on soa::test::kCases random cases from the fixed
+// seed. Each check names its quantity, and its catalogue of classic mistakes is computed from the
+// reference (tests/support/exercise_check.hpp). The cases vary the features the symptoms need:
+// phi(x,y) with and without a rotation and an offset, bodies with the centre of mass at the frame's
+// origin or away from it, parts of a spatial vector that vanish. Built against the solutions
+// (ctest), the students' exercises (make exercises) and the solutions with planted mistakes (the
+// "planted mistakes" blocks, tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
@@ -121,6 +121,18 @@ std::string apply_phi_code(const soa::Phi& phi, const soa::Force& f) {
          "soa::Force f_x = soa::ex01::apply_phi(phi_xy, f_y);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.1
+soa_plant(1.1 wrong-frame
+  FIND [=[phi_xy.l().cross(F)]=]
+  WRONG [=[phi_xy.l().cross(f_y.linear())]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your moment takes l x F\(y\) with F\(y\) still in y-coordinates]=])
+soa_plant(1.1 moment-doubled
+  FIND [=[N_y + offset_moment]=]
+  WRONG [=[N_y + 2.0 * offset_moment]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where the frames are offset: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 TEST(Exercise1_1_ApplyPhi, MatchesPhiApply) {
   Random rnd;
   Check check("f(x) = phi(x,y) f(y)", 16 * kEps);
@@ -203,6 +215,14 @@ std::string spatial_cross_code(const soa::Velocity& X, const soa::Velocity& Y) {
   return code("X", X) + code("Y", Y) + "soa::Acceleration XY = soa::ex01::spatial_cross(X, Y);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.2
+soa_plant(1.2 transpose
+  FIND [=[Acceleration(x * w, y * w + x * v)]=]
+  WRONG [=[Acceleration(x * w + y * v, x * v)]=]
+  EXPECT [=[likely mistake \(transpose\): your result is X_bar Y]=])
+*/
+// clang-format on
 TEST(Exercise1_2_SpatialCross, MatchesLibraryCross) {
   Random rnd;
   Check check("X~ Y, the spatial cross product", 8 * kEps);
@@ -323,6 +343,14 @@ std::string parallel_axis_code(const soa::Phi& phi, const soa::SpatialInertia& M
          "soa::SpatialInertia M_x = soa::ex01::parallel_axis(phi_xy, M_y);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.3
+soa_plant(1.3 transpose
+  FIND [=[R * J_C * R.transpose()]=]
+  WRONG [=[R.transpose() * J_C * R]=] TYPE [=[Mat3<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your J\(C\) is rotated with R\* J R]=])
+*/
+// clang-format on
 TEST(Exercise1_3_ParallelAxis, MatchesLibraryTransform) {
   Random rnd;
   Check check("M(x) = phi(x,y) M(y) phi*(x,y) as (m, m p(x), J(x))", 32 * kEps),
@@ -428,6 +456,14 @@ Naming quaternion_naming() {
   };
 }
 
+// clang-format off
+/* planted mistakes of 1.4
+soa_plant(1.4 degrees
+  FIND [=[theta / 2]=]
+  WRONG [=[theta * 3.14159265358979323846 / 360]=] TYPE [=[double]=]
+  EXPECT [=[likely mistake \(degrees\): your angle is read as degrees.*case [0-3] \(the simplest that fails\) as code \(paste into a program\):[^(]*soa::Vec3<double> n = soa::Vec3<double>.[0-9], [0-9], [0-9].;[^(]*double theta = -?[0-9](\.5)?;]=])
+*/
+// clang-format on
 TEST(Exercise1_4_QuaternionFromAxisAngle, MatchesLibraryExp) {
   Random rnd;
   Check check("the quaternion's coefficients [q; q0]", 16 * kEps);
@@ -514,6 +550,21 @@ std::string kinetic_energy_code(const soa::SpatialInertia& M, const soa::Velocit
   return code("M_x", M) + code("V_x", V) + "double T = soa::ex01::kinetic_energy(M_x, V_x);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.5
+soa_plant(1.5 dropped-coupling
+  FIND [=[w.dot(h.cross(v))]=]
+  WRONG [=[0.0]=] TYPE [=[double]=]
+  EXPECT [=[likely mistake \(dropped term\): the term that couples w and v]=])
+# Not in the catalogue: the 1/2 of the linear term left out. The report says what it
+# measured (the variant the result equals; where it fails), and guesses no cause.
+soa_plant(1.5 half-missing
+  FIND [=[0.5 * M_x.mass() * v.squaredNorm()]=]
+  WRONG [=[M_x.mass() * v.squaredNorm()]=] TYPE [=[double]=]
+  EXPECT [=[T = 1/2 V\*\(x\) M\(x\) V\(x\), the kinetic energy: wrong in [0-9]+ of [0-9]+ cases.*symptom: in every failing case, your result matches the expected value with 1/2 m v\* v taken without its 1/2.*T about x = T about y \(slides 72-73\): wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where the frames are offset: [0-9]+ of those [0-9]+ cases fail, and every other case passes]=]
+  REJECT [=[offset l|is wrong|likely mistake]=])
+*/
+// clang-format on
 TEST(Exercise1_5_KineticEnergy, MatchesLibrary) {
   Random rnd;
   Check check("T = 1/2 V*(x) M(x) V(x), the kinetic energy", 16 * kEps);
@@ -601,6 +652,14 @@ std::string reverse_velocity_code(const soa::Phi& phi, const soa::Velocity& V) {
          "soa::Velocity V_yx = soa::ex01::reverse_velocity(phi_xy, V_xy);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.6
+soa_plant(1.6 sign
+  FIND [=[-v_xy + w_xy.cross(phi_xy.l())]=]
+  WRONG [=[-v_xy - w_xy.cross(phi_xy.l())]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(sign\): your v\(y,x\) subtracts w\(x,y\) x l\(x,y\)]=])
+*/
+// clang-format on
 TEST(Exercise1_6_ReverseVelocity, MatchesLibraryPhi) {
   Random rnd;
   Check check("V(y,x) = -phi*(y,x) V(x,y)", 16 * kEps);
@@ -742,6 +801,14 @@ unsigned twist_tags(const soa::Velocity& xi) {
          (xi.linear().isZero(0.0) ? 0u : unsigned(soa::test::kTranslated));
 }
 
+// clang-format off
+/* planted mistakes of 1.7
+soa_plant(1.7 closed-form-at-small-angles
+  FIND [=[t < 1e-2]=]
+  WRONG [=[t < 0.0]=] TYPE [=[bool]=]
+  EXPECT [=[exp\(xi\^\) at small angles, theta from 1e-9 to 1e-2 \(where the closed forms of g2 and g3 cancel\): wrong in]=])
+*/
+// clang-format on
 TEST(Exercise1_7_ExpTwist, MatchesTheMatrixExponentialAtEveryAngle) {
   Random rnd(71);
   Check check("exp(xi^) = (R, l) at angles theta = |w| from 0 to 3", 64 * kEps),
@@ -817,6 +884,16 @@ std::string force_cross_code(const soa::Velocity& X, const soa::Force& f) {
   return code("X", X) + code("f", f) + "soa::Force Xf = soa::ex01::force_cross(X, f);\n";
 }
 
+// clang-format off
+/* planted mistakes of 1.8
+soa_plant(1.8 dropped-term
+  FIND [=[x.cross(N) + y.cross(F)]=]
+  WRONG [=[x.cross(N)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|the y x F term of the moment part is missing]=]
+  NAMED [=[likely mistake \(dropped term\): the y x F term of the moment part is missing]=])
+*/
+// clang-format on
 TEST(Exercise1_8_ForceCross, MatchesLibraryCrossBar) {
   Random rnd(81);
   Check check("X_bar f, the cross product of forces", 8 * kEps);
@@ -854,6 +931,16 @@ TEST(Exercise1_8_ForceCross, IsDualToTheMotionCrossProduct) {
 
 // ---- 1.9: the rank of X~, predicted (slides 53-54) -----------------------------------------
 
+// clang-format off
+/* planted mistakes of 1.9
+soa_plant(1.9 missed-case
+  FIND [=[y_zero ? 0 : 2]=]
+  WRONG [=[4]=] TYPE [=[int]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your rank is 4 for every X]=]
+  NAMED [=[likely mistake \(missed case\): your rank is 4 for every X]=])
+*/
+// clang-format on
 TEST(Exercise1_9_SpatialCrossRank, MatchesTheRankOfTheMatrix) {
   // The kinds of X in turn: general, x = 0, y = 0, X = 0, y parallel to x.
   Random rnd(91);

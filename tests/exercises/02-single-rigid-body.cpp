@@ -1,11 +1,11 @@
-// Lesson 2 exercise tests: each exercise of exercises/02-single-rigid-body/exercises.hpp
-// against the library, on soa::test::kCases random cases from the fixed seed. Each check names
-// its quantity, and its catalogue of classic mistakes is computed from the reference
-// (tests/support/exercise_check.hpp). The cases vary the features the symptoms need: the
-// frame at the centre of mass or away from it, turning or not, accelerating or not, an
-// attitude that is the identity or not, an applied force or none. Built against the solutions
-// (ctest), the students' exercises (make exercises) and the solutions with planted mistakes
-// (02-single-rigid-body.plant.cmake).
+// Lesson 2 exercise tests: each exercise of exercises/02-single-rigid-body/exercises.hpp against
+// the library, on soa::test::kCases random cases from the fixed seed. Each check names its
+// quantity, and its catalogue of classic mistakes is computed from the reference
+// (tests/support/exercise_check.hpp). The cases vary the features the symptoms need: the frame at
+// the centre of mass or away from it, turning or not, accelerating or not, an attitude that is the
+// identity or not, an applied force or none. Built against the solutions (ctest), the students'
+// exercises (make exercises) and the solutions with planted mistakes (the "planted mistakes"
+// blocks, tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -173,6 +173,14 @@ struct StateChecks {
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 2.1
+soa_plant(2.1 centripetal-doubled
+  FIND [=[M.mass() * w.cross(w.cross(M.p()))]=]
+  WRONG [=[2.0 * M.mass() * w.cross(w.cross(M.p()))]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where the centre of mass is off the frame's origin: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 2.1: b(x) = [w~ J(x) w; m w~ w~ p(x)], against soa::gyroscopic_force.
 TEST(Exercise2_1_GyroscopicTerm, MatchesLibrary) {
   Random<double> rng;
@@ -239,6 +247,18 @@ V6 via_c(double m, const M3& J_C, const V3& p, const soa::Velocity& V, const soa
   return f;
 }
 
+// clang-format off
+/* planted mistakes of 2.2
+soa_plant(2.2 dropped-gyroscopic
+  FIND [=[w.cross(J_C * w)]=]
+  WRONG [=[Vec3<double>::Zero()]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): the gyroscopic moment w x J\(C\) w is missing]=])
+soa_plant(2.2 transpose
+  FIND [=[Force(N_C + p.cross(F_C), F_C)]=]
+  WRONG [=[Force(N_C, Vec3<double>(F_C - p.cross(N_C)))]=] TYPE [=[Force]=]
+  EXPECT [=[likely mistake \(transpose\): your f\(x\) is phi\*\(x,C\) f\(C\)]=])
+*/
+// clang-format on
 // 2.2: f(x) through C, against soa::rigid_body_force = M(x) alpha(x) + b(x).
 TEST(Exercise2_2_SpatialForce, MatchesLibrary) {
   Random<double> rng;
@@ -290,6 +310,14 @@ TEST(Exercise2_2_SpatialForce, MatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 2.3
+soa_plant(2.3 wrong-frame
+  FIND [=[x.q.matrix() * v]=]
+  WRONG [=[v]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your r_dot is v in body coordinates]=])
+*/
+// clang-format on
 // 2.3: the free-body rates, against soa::free_body_rate (with an applied force).
 TEST(Exercise2_3_BodyRates, MatchesLibrary) {
   Random<double> rng;
@@ -390,6 +418,14 @@ soa::FreeBodyState rk4_variant(const soa::SpatialInertia& M, const soa::FreeBody
   return x1;
 }
 
+// clang-format off
+/* planted mistakes of 2.4
+soa_plant(2.4 no-dexp
+  FIND [=[dexp_inv_right(delta, s.d.omega)]=]
+  WRONG [=[s.d.omega]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your delta rates are the angular velocities themselves]=])
+*/
+// clang-format on
 // 2.4: one torque-free Lie-group RK4 step, against soa::rk4_step. The steps are large enough
 // (h |w| up to ~0.5) that a different fourth-order scheme would differ by far more than rounding.
 TEST(Exercise2_4_Rk4Step, MatchesLibrary) {
@@ -441,6 +477,15 @@ TEST(Exercise2_4_Rk4Step, MatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 2.5
+soa_plant(2.5 transpose
+  FIND [=[(Vec6<double>() << w.cross(h_w) + v.cross(h_v), w.cross(h_v)).finished()]=]
+  WRONG [=[(Vec6<double>() << w.cross(h_w), v.cross(h_w) + w.cross(h_v)).finished()]=]
+  TYPE [=[Vec6<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your V_bar is V~]=])
+*/
+// clang-format on
 // 2.5: the body-frame form f = M V_dot + V-bar M V, against soa::rigid_body_force at the
 // inertial derivative alpha = [w_dot; v_dot + w x v] (lesson 2, section 4).
 TEST(Exercise2_5_BodyFrameForce, MatchesLibrary) {
@@ -517,6 +562,16 @@ Naming axis_naming(const V3& J, const std::string& what) {
   };
 }
 
+// clang-format off
+/* planted mistakes of 2.6
+soa_plant(2.6 sign
+  FIND [=[s < 0.0]=]
+  WRONG [=[s > 0.0]=] TYPE [=[bool]=]
+  EXPECT [=[the checker knows this mistake: it names it after 4 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your prediction is the opposite about every axis]=]
+  NAMED [=[likely mistake \(sign\): your prediction is the opposite about every axis]=])
+*/
+// clang-format on
 TEST(Exercise2_6_SpinStability, MatchesTheLinearizedLibrary) {
   Random<double> rng(26);
   Check predicted("the prediction, about each principal axis: stable (+1) or unstable (-1)", 0.0),
@@ -622,6 +677,16 @@ soa::FreeBodyState lie_euler_variant(const soa::SpatialInertia& M, const soa::Fr
   return x1;
 }
 
+// clang-format off
+/* planted mistakes of 2.7
+soa_plant(2.7 the-bug
+  FIND [=[x0.q * UnitQuaternion::exp(h * w)]=]
+  WRONG [=[UnitQuaternion::exp(h * w) * x0.q]=] TYPE [=[UnitQuaternion]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your attitude is exp\(h w\) \(x\) q0, the given code's bug]=]
+  NAMED [=[likely mistake \(wrong frame\): your attitude is exp\(h w\) \(x\) q0, the given code's bug]=])
+*/
+// clang-format on
 // 2.7: the Euler step, fixed, against the same step built from the library's rates
 // (soa::free_body_rate) and the exact turn q0 (x) exp(h w).
 TEST(Exercise2_7_LieEulerStep, MatchesTheLibraryRates) {

@@ -1,11 +1,11 @@
 // Lesson 3 exercise tests: each exercise of exercises/03-serial-chain-kinematics/exercises.hpp
-// against the library, on soa::test::kCases random cases from the fixed seed: chains of 1 to
-// 7 bodies whose features vary independently across the cases (hinge types drawn at random;
-// every third chain has no offsets, l = 0 and only hinges that turn, so that a mistake in an
-// offset term shows as a symptom). Each check names its quantity, and its catalogue of
-// classic mistakes is computed from the reference (tests/support/exercise_check.hpp). Built
-// against the solutions (ctest), the students' exercises (make exercises) and the solutions
-// with planted mistakes (03-serial-chain-kinematics.plant.cmake).
+// against the library, on soa::test::kCases random cases from the fixed seed: chains of 1 to 7
+// bodies whose features vary independently across the cases (hinge types drawn at random; every
+// third chain has no offsets, l = 0 and only hinges that turn, so that a mistake in an offset term
+// shows as a symptom). Each check names its quantity, and its catalogue of classic mistakes is
+// computed from the reference (tests/support/exercise_check.hpp). Built against the solutions
+// (ctest), the students' exercises (make exercises) and the solutions with planted mistakes (the
+// "planted mistakes" blocks, tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -139,6 +139,14 @@ std::string hinge_code(const soa::Hinge& h, const VecX& theta) {
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 3.1
+soa_plant(3.1 universal-transpose
+  FIND [=[exp_so3<double>(-theta[1] * hinge.axis2) * a]=]
+  WRONG [=[exp_so3<double>(theta[1] * hinge.axis2) * a]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your first column is exp\(\+theta_2 a_2~\) a]=])
+*/
+// clang-format on
 // 3.1: H*(k) of every hinge type, against soa::Hinge::H_star.
 TEST(Exercise3_1_JointMap, MatchesLibrary) {
   Random<double> rnd;
@@ -257,6 +265,20 @@ VecX scatter_variant(const std::vector<soa::Phi>& phi, const std::vector<soa::Ve
   return stack(V);
 }
 
+// clang-format off
+/* planted mistakes of 3.2
+soa_plant(3.2 transpose
+  FIND [=[phi[k - 1].transpose_apply(V_parent)]=]
+  WRONG [=[Velocity(Vec6<double>(phi[k-1].matrix() * V_parent.vector()))]=]
+  TYPE [=[Velocity]=]
+  EXPECT [=[likely mistake \(transpose\): your V\(k\) takes phi\(k\+1,k\) V\(k\+1\)]=])
+soa_plant(3.2 rotation-only
+  FIND [=[phi[k - 1].transpose_apply(V_parent)]=]
+  WRONG [=[Velocity(Vec3<double>(phi[k-1].R().transpose() * V_parent.angular()), Vec3<double>(phi[k-1].R().transpose() * V_parent.linear()))]=]
+  TYPE [=[Velocity]=]
+  EXPECT [=[likely mistake \(dropped term\): your V\(k\) turns V\(k\+1\) by R\* but leaves out the offset]=])
+*/
+// clang-format on
 // 3.2: the velocity scatter recursion, against soa::update_velocities.
 TEST(Exercise3_2_ScatterVelocities, MatchesLibrary) {
   Random<double> rnd;
@@ -324,6 +346,14 @@ std::string phi_list_code() {
          "phi(k+1,k)\n";
 }
 
+// clang-format off
+/* planted mistakes of 3.3
+soa_plant(3.3 neighbour-index
+  FIND [=[phi[k - 1].matrix()]=]
+  WRONG [=[phi[k].matrix()]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(neighbour index\): block \(k\+1, k\) of yours holds phi\(k\+2,k\+1\)]=])
+*/
+// clang-format on
 // 3.3: the shift operator E_phi, against soa::Operators::E_phi.
 TEST(Exercise3_3_ShiftOperator, MatchesLibrary) {
   Random<double> rnd;
@@ -383,6 +413,14 @@ MatX phi_variant(const std::vector<soa::Phi>& phi, PhiOp v) {
              : P;
 }
 
+// clang-format off
+/* planted mistakes of 3.4
+soa_plant(3.4 order
+  FIND [=[phi[i - 1].matrix() * block]=]
+  WRONG [=[block * phi[i - 1].matrix()]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(order\): your products run the wrong way]=])
+*/
+// clang-format on
 // 3.4: phi block by block, against soa::Operators::phi = (I - E_phi)^-1, and (I - E_phi) phi = I.
 TEST(Exercise3_4_PhiOperator, MatchesLibrary) {
   Random<double> rnd;
@@ -446,6 +484,18 @@ MatX jacobian_variant(const KinCase& c, int k, const soa::Pose& F, int first, bo
   return J;
 }
 
+// clang-format off
+/* planted mistakes of 3.5
+soa_plant(3.5 transpose
+  FIND [=[phi_iF.transpose() * B.hinge.H_star(theta.data() + B.q_offset)]=]
+  WRONG [=[phi_iF * B.hinge.H_star(theta.data() + B.q_offset)]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your columns are phi\(O_i, F\) H\*\(i\)]=])
+soa_plant(3.5 frame-ignored
+  FIND [=[ws.pose[k - 1] * frame]=]
+  WRONG [=[ws.pose[k - 1]]=] TYPE [=[Pose]=]
+  EXPECT [=[likely mistake \(wrong frame\): your J is the Jacobian of O_k]=])
+*/
+// clang-format on
 // 3.5: the Jacobian of a random frame on a random body, against soa::jacobian.
 TEST(Exercise3_5_FrameJacobian, MatchesLibrary) {
   Random<double> rnd;
@@ -521,6 +571,28 @@ soa::Acceleration coriolis_variant(const soa::Phi& phi, const soa::Velocity& Vp,
   return a;
 }
 
+// clang-format off
+/* planted mistakes of 3.6
+soa_plant(3.6 unrotated-parent
+  FIND [=[phi.R().transpose()]=]
+  WRONG [=[Mat3<double>::Identity()]=] TYPE [=[Mat3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your omega\(k\+1\) and v\(k\+1\) are V_parent's halves as given]=])
+soa_plant(3.6 no-free-term
+  FIND [=[w.cross(dv)]=]
+  WRONG [=[w_p.cross(dv)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your linear part has omega\(k\+1\) x dv]=])
+soa_plant(3.6 relative-sign
+  FIND [=[v - v_p]=]
+  WRONG [=[v_p - v]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(sign\): your relative velocity is v\(k\+1\) - v\(k\)]=])
+# Not in the catalogue: the angular part doubled. Zero for a single body (V(n+1) = 0), so
+# the report gives the symptom.
+soa_plant(3.6 angular-doubled
+  FIND [=[w_p.cross(dw)]=]
+  WRONG [=[2.0 * w_p.cross(dw)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where there is more than one body: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 3.6: the Coriolis term a(k) of every body of random chains, against soa::coriolis_term (as
 // soa::update_velocities computes it).
 TEST(Exercise3_6_CoriolisAcceleration, MatchesLibrary) {
@@ -627,6 +699,16 @@ PlanarCase draw_planar_case(Random<double>& rnd, int i) {
   return c;
 }
 
+// clang-format off
+/* planted mistakes of 3.7
+soa_plant(3.7 degrees
+  FIND [=[theta[0] * a]=]
+  WRONG [=[theta[0] * 3.14159265358979323846 / 180 * a]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[H\*\(theta\), the joint map of the planar hinge: wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where the frames are rotated.*the checker knows this mistake: it names it after 4 failed runs.*where, in case [0-9]+ \(the simplest that fails\): column [23]]=]
+  REJECT [=[likely mistake|perhaps \(|your rotation takes theta_1 in degrees|R\* ?b|R\* ?c|a~ R\*|pi/180]=]
+  NAMED [=[likely mistake \(degrees\): your rotation takes theta_1 in degrees]=])
+*/
+// clang-format on
 // 3.7: the joint map of a planar hinge and the rate of its entries, against the derivation.
 TEST(Exercise3_7_PlanarJointMap, MatchesDerivation) {
   Random<double> rnd;
@@ -723,6 +805,16 @@ TEST(Exercise3_7_PlanarJointMap, ReferenceIsTheDerivative) {
   EXPECT_LE(worst_Hdot, 1e-8);
 }
 
+// clang-format off
+/* planted mistakes of 3.8
+soa_plant(3.8 the-bug
+  FIND [=[w.cross(R * p)]=]
+  WRONG [=[w.cross(p)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your result is the given code's]=]
+  NAMED [=[likely mistake \(the given bug\): your result is the given code's]=])
+*/
+// clang-format on
 // 3.8: the velocity of a point of body k in inertial coordinates, against the library's
 // velocities and poses, R_k (v(k) + omega(k) x p).
 TEST(Exercise3_8_PointVelocity, MatchesLibrary) {

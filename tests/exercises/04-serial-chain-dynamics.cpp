@@ -1,11 +1,11 @@
 // Lesson 4 exercise tests: each exercise of exercises/04-serial-chain-dynamics/exercises.hpp
-// against the library, on soa::test::kCases random chains (1 to 7 bodies, hinge types drawn
-// at random unless the exercise is for revolute chains; at rest or moving, with or without
-// gravity and external forces: tests/support/chain_case.hpp) from the fixed seed. Each
-// check names its quantity, and its catalogue of classic mistakes is computed from the
-// reference (tests/support/exercise_check.hpp). Built against the solutions (ctest), the
-// students' exercises (make exercises) and the solutions with planted mistakes
-// (04-serial-chain-dynamics.plant.cmake).
+// against the library, on soa::test::kCases random chains (1 to 7 bodies, hinge types drawn at
+// random unless the exercise is for revolute chains; at rest or moving, with or without gravity and
+// external forces: tests/support/chain_case.hpp) from the fixed seed. Each check names its
+// quantity, and its catalogue of classic mistakes is computed from the reference
+// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students' exercises
+// (make exercises) and the solutions with planted mistakes (the "planted mistakes" blocks,
+// tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -86,6 +86,14 @@ VecX gather(const soa::Model& m, const std::vector<soa::Phi>& phi,
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 4.1
+soa_plant(4.1 neighbour-index
+  FIND [=[phi[i - 1].apply(g.f[i - 1])]=]
+  WRONG [=[phi[i].apply(g.f[i - 1])]=]
+  EXPECT [=[likely mistake \(neighbour index\): your f\(k\) takes phi\(k\+1,k\)]=])
+*/
+// clang-format on
 // 4.1: the gather sweep, given phi, alpha and b from the library's scatter sweep, against
 // soa::inverse_dynamics (gravity and external forces included).
 TEST(Exercise4_1_GatherForces, MatchesInverseDynamics) {
@@ -198,6 +206,22 @@ VecX newton_euler_variant(const soa::Model& m, const soa::State& x, const VecX& 
   return T;
 }
 
+// clang-format off
+/* planted mistakes of 4.2
+soa_plant(4.2 gravity-sign
+  FIND [=[-m.gravity]=]
+  WRONG [=[m.gravity]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(sign\): your base acceleration is alpha\(n\+1\) = \[0; \+g\]]=])
+soa_plant(4.2 unrotated-l
+  FIND [=[Rt * phi[i].l()]=]
+  WRONG [=[phi[i].l()]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\)]=])
+soa_plant(4.2 coriolis-doubled
+  FIND [=[w_parent.cross(be * a)]=]
+  WRONG [=[2.0 * w_parent.cross(be * a)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where it moves \(the velocities are not zero\): [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 4.2: Newton-Euler inverse dynamics of random revolute chains with gravity, against
 // soa::inverse_dynamics.
 TEST(Exercise4_2_NewtonEuler, MatchesInverseDynamics) {
@@ -254,6 +278,14 @@ std::string operators_code(const ChainCase& c) {
          "op.phi.setZero();  // the exercise computes it\n";
 }
 
+// clang-format off
+/* planted mistakes of 4.3
+soa_plant(4.3 transpose
+  FIND [=[phi.transpose() * op.H.transpose()]=]
+  WRONG [=[phi * op.H.transpose()]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your result is H phi\* M phi H\*]=])
+*/
+// clang-format on
 // 4.3: H phi M phi* H* with phi computed from E_phi (op.phi is zeroed), against
 // soa::OperatorsT::mass_matrix().
 TEST(Exercise4_3_MassMatrixOperators, MatchesOperators) {
@@ -331,6 +363,14 @@ TEST(Exercise4_4_MassMatrixColumns, MatchesOperators) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 4.5
+soa_plant(4.5 dropped-b
+  FIND [=[op.M * (phi.transpose() * op.a) + op.b]=]
+  WRONG [=[op.M * (phi.transpose() * op.a)]=] TYPE [=[VecX<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): b \(gyroscopic less external forces\) is missing]=])
+*/
+// clang-format on
 // 4.5: C = H phi (M phi* a + b) with phi from E_phi (op.phi zeroed), against the O(N)
 // soa::inverse_dynamics at beta_dot = 0 (gravity and external forces included).
 TEST(Exercise4_5_BiasOperators, MatchesInverseDynamics) {
@@ -367,6 +407,14 @@ TEST(Exercise4_5_BiasOperators, MatchesInverseDynamics) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 4.6
+soa_plant(4.6 wrong-frame
+  FIND [=[ws.pose[std::size_t(k - 1)].R().transpose() * m.gravity]=]
+  WRONG [=[m.gravity]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\)]=])
+*/
+// clang-format on
 // 4.6: gravity torques from the Jacobians of the centres of mass, against
 // soa::inverse_dynamics at rest with gravity.
 TEST(Exercise4_6_GravityTorques, MatchesInverseDynamics) {
@@ -420,6 +468,15 @@ TEST(Exercise4_6_GravityTorques, MatchesInverseDynamics) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 4.7
+soa_plant(4.7 transpose
+  FIND [=[B.transpose() * (es.op.M * B_dot + es.h_breve * B)]=]
+  WRONG [=[(B.transpose() * (es.op.M * B_dot + es.h_breve * B)).transpose()]=]
+  TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your result is C_v\*]=])
+*/
+// clang-format on
 // 4.7: the Coriolis matrix from the operators, against soa::EnergyStructureT::coriolis_matrix()
 // and, independently, C_v beta against the O(N) inverse dynamics at beta_dot = 0 without
 // gravity. Rounding scales with the terms |B|^2 (|M| |Delta_bar| |phi| + |h_breve|).
@@ -488,6 +545,16 @@ soa::Acceleration helical_variant(const Vec3& w, const Vec3& l, const Vec3& a, d
   return soa::Acceleration(ang, u.cross(u.cross(l)) + slide * b * h * u.cross(a));
 }
 
+// clang-format off
+/* planted mistakes of 4.8
+soa_plant(4.8 slide-once
+  FIND [=[2.0 * beta * pitch * w.cross(axis)]=]
+  WRONG [=[beta * pitch * w.cross(axis)]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 4 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your linear part has h beta omega' x a once]=]
+  NAMED [=[likely mistake \(dropped term\): your linear part has h beta omega' x a once]=])
+*/
+// clang-format on
 // 4.8: a(k) of a helical hinge against soa::coriolis_term, on random single hinges: the
 // inboard body's velocity V(k+1) = [omega; v] (v random: the result must not depend on it),
 // phi(k+1,k) rotated or not, offset or not, the hinge turning or not, a screw or a plain
@@ -581,6 +648,20 @@ VecX statics_signs(const soa::Model& m, const soa::Workspace& ws, Statics e) {
   return s;
 }
 
+// clang-format off
+/* planted mistakes of 4.9
+soa_plant(4.9 sign
+  FIND [=[-a.dot(moment)]=]
+  WRONG [=[a.dot(moment)]=] TYPE [=[double]=]
+  EXPECT [=[the checker knows this mistake: it names it after 4 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your signs are those of gravity's torque]=]
+  NAMED [=[likely mistake \(sign\): your signs are those of gravity's torque]=])
+soa_plant(4.9 pose-of-hinge
+  FIND [=[ws.pose[std::size_t(i - 1)].apply(Mi.p())]=]
+  WRONG [=[O.apply(Mi.p())]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where there is more than one body: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 4.9: the signs against those of soa::inverse_dynamics at rest, on revolute chains under
 // gravity along -z; in every third case one or two hinges have their axis turned vertical
 // (no gravity torque, whatever the pose). An entry whose torque is within a factor 1000 of the

@@ -1,10 +1,10 @@
 // Lesson 5 exercise tests: each exercise of exercises/05-mass-matrix/exercises.hpp against the
-// library, on soa::test::kCases random chains from the fixed seed (1 to 9 bodies, hinge types
-// drawn at random unless the exercise is for revolute or prismatic chains). Each check names
-// its quantity, and its catalogue of classic mistakes is computed from the reference
-// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students'
-// exercises (make exercises) and the solutions with planted mistakes
-// (05-mass-matrix.plant.cmake).
+// library, on soa::test::kCases random chains from the fixed seed (1 to 9 bodies, hinge types drawn
+// at random unless the exercise is for revolute or prismatic chains). Each check names its
+// quantity, and its catalogue of classic mistakes is computed from the reference
+// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students' exercises
+// (make exercises) and the solutions with planted mistakes (the "planted mistakes" blocks,
+// tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -114,6 +114,18 @@ std::vector<Mat6> composite_variant(const soa::Model& m, const std::vector<soa::
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 5.1
+soa_plant(5.1 neighbour-index
+  FIND [=[transform(phi[i - 1], R[i - 1])]=]
+  WRONG [=[transform(phi[i], R[i - 1])]=] TYPE [=[SpatialInertia]=]
+  EXPECT [=[likely mistake \(neighbour index\): your R\(k\) moves R\(k-1\) with phi\(k\+1,k\)]=])
+soa_plant(5.1 unmoved
+  FIND [=[transform(phi[i - 1], R[i - 1])]=]
+  WRONG [=[R[i - 1]]=] TYPE [=[SpatialInertia]=]
+  EXPECT [=[likely mistake \(wrong frame\): your R\(k\) adds R\(k-1\) as it is]=])
+*/
+// clang-format on
 // 5.1: the composite inertias from phi, against soa::composite_inertias. Each R(k) is held
 // to rounding relative to its own size, so every body of every chain is a case of the check.
 TEST(Exercise5_1_CompositeInertias, MatchesLibrary) {
@@ -189,6 +201,20 @@ MatX block_diagonal(const soa::Model& m, const VecX& theta, const F& inertia_of)
   return D;
 }
 
+// clang-format off
+/* planted mistakes of 5.2
+soa_plant(5.2 own-inertia
+  FIND [=[R[std::size_t(k - 1)].matrix() * Hs]=]
+  WRONG [=[B.M.matrix() * Hs]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your M\(k,k\) uses M\(k\), body k alone]=])
+# Not in the catalogue: the prismatic joint map doubled. The report gives the symptom.
+soa_plant(5.2 prismatic-doubled
+  FIND [=[B.hinge.H_star(theta.data() + B.q_offset)]=]
+  WRONG [=[B.hinge.type == HingeType::Prismatic ? MatX<double>(2.0 * B.hinge.H_star(theta.data() + B.q_offset)) : MatX<double>(B.hinge.H_star(theta.data() + B.q_offset))]=]
+  TYPE [=[MatX<double>]=]
+  EXPECT [=[symptom: it fails only where a hinge is prismatic: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 5.2: the diagonal blocks H(k) R(k) H*(k), against soa::OperatorsT::mass_matrix().
 TEST(Exercise5_2_MassMatrixDiagonal, MatchesOperators) {
   Random<double> rnd;
@@ -275,6 +301,20 @@ MatX crb_variant(const soa::Model& m, const VecX& theta, Crb v) {
   return M;
 }
 
+// clang-format off
+/* planted mistakes of 5.3
+soa_plant(5.3 transpose
+  FIND [=[phi[std::size_t(i - 2)].apply(F)]=]
+  WRONG [=[Force(Vec6<double>(phi[std::size_t(i-2)].matrix().transpose() * F.vector()))]=]
+  TYPE [=[Force]=]
+  EXPECT [=[likely mistake \(transpose\): your force R\(j\) H\*\(j\) is carried inboard with phi\*]=])
+soa_plant(5.3 degrees
+  FIND [=[theta[B.q_offset] * B.hinge.axis]=]
+  WRONG [=[theta[B.q_offset] * 3.14159265358979323846 / 180 * B.hinge.axis]=]
+  TYPE [=[Vec3<double>]=]
+  EXPECT [=[likely mistake \(degrees\): your phi\(k\+1,k\) takes theta in degrees]=])
+*/
+// clang-format on
 // 5.3: the CRB mass matrix of random revolute chains, against
 // soa::OperatorsT::mass_matrix().
 TEST(Exercise5_3_CrbMassMatrixRevolute, MatchesOperators) {
@@ -338,6 +378,14 @@ MatX lyapunov(const soa::Operators& op, bool transposed) {
   return R;
 }
 
+// clang-format off
+/* planted mistakes of 5.4
+soa_plant(5.4 sign
+  FIND [=[R + phi_t * R + R * phi_t.transpose()]=]
+  WRONG [=[R - phi_t * R - R * phi_t.transpose()]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(sign\): your result subtracts phi~ R and R phi~\*]=])
+*/
+// clang-format on
 // 5.4: R + phi~ R + R phi~* from the block Lyapunov recursion, against phi M phi*.
 TEST(Exercise5_4_Decomposition, MatchesPhiMPhiStar) {
   Random<double> rnd;
@@ -410,6 +458,16 @@ MatX blocks_variant(const std::vector<soa::Phi>& phi, const Inertias& R, Block v
   return out;
 }
 
+// clang-format off
+/* planted mistakes of 5.5
+soa_plant(5.5 transpose
+  FIND [=[phi_M_phi_star_block(phi, R, j, i).transpose()]=]
+  WRONG [=[phi_M_phi_star_block(phi, R, j, i)]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 4 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your block \(i,j\), i < j, is block \(j,i\) itself]=]
+  NAMED [=[likely mistake \(transpose\): your block \(i,j\), i < j, is block \(j,i\) itself]=])
+*/
+// clang-format on
 // 5.5: block (i, j) of phi M phi* for every i, j, assembled, against the dense phi M phi*.
 TEST(Exercise5_5_PhiMPhiStarBlock, MatchesPhiMPhiStar) {
   Random<double> rnd;
@@ -456,6 +514,16 @@ TEST(Exercise5_5_PhiMPhiStarBlock, MatchesPhiMPhiStar) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 5.6
+soa_plant(5.6 no-angle
+  FIND [=[axis[std::size_t(i - 1)].dot(axis[std::size_t(j - 1)])]=]
+  WRONG [=[1.0]=] TYPE [=[double]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your M\(i,j\) leaves out a_i \. a_j]=]
+  NAMED [=[likely mistake \(dropped term\): your M\(i,j\) leaves out a_i \. a_j]=])
+*/
+// clang-format on
 // 5.6: the mass matrix of random chains of sliders (every hinge prismatic), predicted from the
 // masses and the axes in inertial coordinates, against soa::mass_matrix_crb. Every fourth
 // chain has all its axes parallel.
@@ -545,5 +613,98 @@ TEST(Exercise5_6_SliderMassMatrix, MatchesCrb) {
                  "};\nsoa::MatX<double> M = soa::ex05::slider_mass_matrix(mass, axis);\n";
         },
         mistakes, soa::test::dof_blocks(m, "M"));
+  }
+}
+
+// A block column of the mass matrix (5.7) with a classic mistake in it, as the whole nv x nv
+// matrix of its columns.
+enum class Column { OutboardPhi, InboardPhiStar, UpperDropped, OuterInertia };
+MatX column_variant(const MassCase& c, Column v) {
+  const soa::Model& m = c.m;
+  auto Hs = [&](int k) {
+    const soa::Body& B = m.body(k);
+    return MatX(B.hinge.H_star(c.x.theta.data() + B.q_offset));
+  };
+  auto P = [&](int k) { return Mat6(c.ws.phi[std::size_t(k - 1)].matrix()); };  // phi(k+1,k)
+  auto R = [&](int k) { return Mat6(c.R[std::size_t(k - 1)].matrix()); };
+  MatX M = MatX::Zero(m.nv(), m.nv());
+  for (int j = 1; j <= m.n(); ++j) {
+    const soa::Body& Bj = m.body(j);
+    auto column = M.middleCols(Bj.v_offset, Bj.hinge.nv());
+    MatX F = R(j) * Hs(j);
+    for (int i = j; i <= m.n(); ++i) {
+      if (i > j)
+        F = v == Column::InboardPhiStar ? MatX(P(i - 1).transpose() * F) : MatX(P(i - 1) * F);
+      column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) = Hs(i).transpose() * F;
+    }
+    if (v == Column::UpperDropped) continue;
+    MatX V = Hs(j);
+    for (int i = j - 1; i >= 1; --i) {
+      V = v == Column::OutboardPhi ? MatX(P(i) * V) : MatX(P(i).transpose() * V);
+      const Mat6 Ri = v == Column::OuterInertia ? R(j) : R(i);
+      column.middleRows(m.body(i).v_offset, m.body(i).hinge.nv()) = Hs(i).transpose() * Ri * V;
+    }
+  }
+  return M;
+}
+
+// clang-format off
+/* planted mistakes of 5.7
+soa_plant(5.7 transpose
+  FIND [=[phi[std::size_t(i - 1)].matrix().transpose() * V]=]
+  WRONG [=[phi[std::size_t(i - 1)].matrix() * V]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your motions H\*\(j\) are carried outboard with phi\(i\+1,i\)]=])
+*/
+// clang-format on
+// 5.7: every block column j of the mass matrix, against soa::OperatorsT::mass_matrix().
+TEST(Exercise5_7_MassMatrixColumn, MatchesOperators) {
+  Random<double> rnd;
+  Check check("M(., j), the block columns of the mass matrix", 64 * kEps);
+  for (int i = 0; i < kCases; ++i) {
+    const MassCase c = draw_mass_case(rnd, i);
+    const soa::Model& m = c.m;
+    const MatX M_ref = soa::Operators::build(m, c.x).mass_matrix();
+    auto inputs = [&] {
+      return c.code() + MassCase::composite_code() +
+             "// for j = 1..n:\nauto column = soa::ex05::mass_matrix_column(m, x.theta, ws.phi, "
+             "R, j);\n";
+    };
+    MatX got = MatX::Zero(m.nv(), m.nv());
+    bool shaped = true;
+    for (int j = 1; j <= m.n() && shaped; ++j) {
+      const soa::Body& B = m.body(j);
+      const MatX column = soa::ex05::mass_matrix_column(m, c.x.theta, c.ws.phi, c.R, j);
+      if (column.rows() != m.nv() || column.cols() != B.hinge.nv()) {
+        check.add(i, column, M_ref.middleCols(B.v_offset, B.hinge.nv()), M_ref.norm(), c.tags,
+                  inputs);
+        shaped = false;
+        break;
+      }
+      got.middleCols(B.v_offset, B.hinge.nv()) = column;
+    }
+    if (!shaped) continue;
+    auto mistakes = [&] {
+      auto v = [&](Column e) { return column_variant(c, e); };
+      return Mistakes{
+          soa::test::negated(M_ref, "your columns have the opposite sign"),
+          {"transpose",
+           "your motions H*(j) are carried outboard with phi(i+1,i): motions move outward "
+           "with phi*, phi[i-1].matrix().transpose()",
+           v(Column::OutboardPhi)},
+          {"transpose",
+           "your forces R(j) H*(j) are carried inboard with phi*(i,i-1): forces move inward "
+           "with phi, phi[i-2]",
+           v(Column::InboardPhiStar)},
+          {"dropped term",
+           "the rows of your column above body j are zero: M(i,j) = H(i) R(i) phi*(j,i) H*(j) "
+           "for i < j",
+           v(Column::UpperDropped)},
+          {"wrong frame",
+           "above body j your M(i,j) uses R(j): the motion phi*(j,i) H*(j) is at O_i, where "
+           "the composite body 1..i has R(i)",
+           v(Column::OuterInertia)},
+      };
+    };
+    check.add(i, got, M_ref, M_ref.norm(), c.tags, inputs, mistakes, soa::test::dof_blocks(m, "M"));
   }
 }

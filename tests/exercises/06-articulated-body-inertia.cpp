@@ -1,13 +1,13 @@
 // Lesson 6 exercise tests: each exercise of exercises/06-articulated-body-inertia/exercises.hpp
-// against the library, on soa::test::kCases random chains (1 to 7 bodies, hinge types drawn
-// at random unless the exercise is for revolute chains; at rest or moving, with or without
-// gravity where the exercise allows it: tests/support/chain_case.hpp) from the fixed seed.
-// Each check names its quantity, and its catalogue of classic mistakes is computed from the
-// reference (tests/support/exercise_check.hpp): the Riccati recursion with a mistake in it
-// (riccati_variant()), the composite-body bias and the shaken base likewise. The exercises
-// of one Riccati step (6.1, 6.2, 6.8) take each body of each chain as a case of its own.
-// Built against the solutions (ctest), the students' exercises (make exercises) and the
-// solutions with planted mistakes (06-articulated-body-inertia.plant.cmake).
+// against the library, on soa::test::kCases random chains (1 to 7 bodies, hinge types drawn at
+// random unless the exercise is for revolute chains; at rest or moving, with or without gravity
+// where the exercise allows it: tests/support/chain_case.hpp) from the fixed seed. Each check names
+// its quantity, and its catalogue of classic mistakes is computed from the reference
+// (tests/support/exercise_check.hpp): the Riccati recursion with a mistake in it
+// (riccati_variant()), the composite-body bias and the shaken base likewise. The exercises of one
+// Riccati step (6.1, 6.2, 6.8) take each body of each chain as a case of its own. Built against the
+// solutions (ctest), the students' exercises (make exercises) and the solutions with planted
+// mistakes (the "planted mistakes" blocks, tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <Eigen/SVD>
@@ -219,6 +219,18 @@ const Variant kProjectionVariants[] = {
 
 }  // namespace
 
+// clang-format off
+/* planted mistakes of 6.1
+soa_plant(6.1 transpose
+  FIND [=[phi6 * P_plus_prev * phi6.transpose()]=]
+  WRONG [=[phi6.transpose() * P_plus_prev * phi6]=] TYPE [=[Mat6]=]
+  EXPECT [=[likely mistake \(transpose\): your P\(k\) carries P\+\(k-1\) as phi\*\(k,k-1\) P\+ phi\(k,k-1\)]=])
+soa_plant(6.1 one-dof-gain
+  FIND [=[PHs * s.D.inverse()]=]
+  WRONG [=[PHs / s.D(0, 0)]=] TYPE [=[MatX<double>]=]
+  EXPECT [=[G\(k\) = P H\* D\^-1: wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where a hinge has several degrees of freedom: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 6.1: one step of the Riccati recursion, given the library's P+(k-1), against
 // soa::articulated_inertias; each body of each chain is a case.
 TEST(Exercise6_1_RiccatiStep, MatchesLibrary) {
@@ -279,6 +291,14 @@ TEST(Exercise6_1_RiccatiStep, MatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 6.2
+soa_plant(6.2 transpose
+  FIND [=[Mat6::Identity() - G * H_star.transpose()]=]
+  WRONG [=[Mat6::Identity() - H_star * G.transpose()]=] TYPE [=[Mat6]=]
+  EXPECT [=[likely mistake \(transpose\): your result is tau_bar\* = I - H\* G\*]=])
+*/
+// clang-format on
 // 6.2: tau_bar of each body's library P(k), against soa::ArticulatedT::tau_bar, and its two
 // properties: a projection, and H tau_bar P = 0.
 TEST(Exercise6_2_TauBar, ProjectionMatchesLibrary) {
@@ -326,6 +346,14 @@ TEST(Exercise6_2_TauBar, ProjectionMatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 6.3
+soa_plant(6.3 neighbour-index
+  FIND [=[soa::transform_symmetric(ws.phi[std::size_t(k - 2)], P_plus)]=]
+  WRONG [=[soa::transform_symmetric(ws.phi[std::size_t(k - 1)], P_plus)]=] TYPE [=[Mat6]=]
+  EXPECT [=[likely mistake \(neighbour index\): your P\(k\) carries P\+\(k-1\) with phi\(k\+1,k\)]=])
+*/
+// clang-format on
 // 6.3: D(k) of random revolute chains, against soa::articulated_inertias. Each entry is held
 // to its own body's scale: D(k) - library over max(1, |P(k)|) kappa(k), at most 64 eps.
 TEST(Exercise6_3_RevoluteD, MatchesLibrary) {
@@ -363,6 +391,18 @@ TEST(Exercise6_3_RevoluteD, MatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 6.4
+soa_plant(6.4 sign
+  FIND [=[A + L * B.transpose() - B * L - L * C * L]=]
+  WRONG [=[A + L * B.transpose() - B * L + L * C * L]=] TYPE [=[Mat3<double>]=]
+  EXPECT [=[likely mistake \(sign\): your top-left block adds L C' L]=])
+soa_plant(6.4 wrong-frame
+  FIND [=[tilde(phi.l())]=]
+  WRONG [=[tilde(Vec3<double>(R * phi.l()))]=] TYPE [=[Mat3<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your L is the cross-product matrix of R l]=])
+*/
+// clang-format on
 // 6.4: phi P phi* by blocks, against the dense product with phi.matrix(). The cases vary
 // phi (rotated or not, offset or not) and P (off-diagonal block B zero or not).
 TEST(Exercise6_4_TransformSymmetric, MatchesDense) {
@@ -451,6 +491,14 @@ VecX composite_forces(const soa::Model& m, const soa::Workspace& ws, std::vector
   return f;
 }
 
+// clang-format off
+/* planted mistakes of 6.5
+soa_plant(6.5 dropped-z
+  FIND [=[fd.art.P_plus[j] * fd.alpha_plus[j].vector() + fd.z_plus[j].vector()]=]
+  WRONG [=[fd.art.P_plus[j] * fd.alpha_plus[j].vector()]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): z\+\(k\) is missing from your f\(k\)]=])
+*/
+// clang-format on
 // 6.5: P+ alpha+ + z+ from soa::forward_dynamics, against the Newton-Euler f at the
 // beta_dot it found and against R alpha+ + y of the composite inertias.
 TEST(Exercise6_5_ArticulatedForces, MatchNewtonEulerAndComposite) {
@@ -562,6 +610,22 @@ VecX bias_variant(const soa::Model& m, const soa::Workspace& ws,
   return y;
 }
 
+// clang-format off
+/* planted mistakes of 6.6
+soa_plant(6.6 neighbour-index
+  FIND [=[ws.phi[j - 1].matrix() * y.back()]=]
+  WRONG [=[ws.phi[j].matrix() * y.back()]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[likely mistake \(neighbour index\): your y\(k\) takes phi\(k\+1,k\) y\(k-1\)]=])
+soa_plant(6.6 dropped-b
+  FIND [=[gyroscopic_force(m.body(k).M, ws.V[j]).vector()]=]
+  WRONG [=[Vec6<double>::Zero()]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): b\(k\), the gyroscopic force, is missing]=])
+soa_plant(6.6 gravity-doubled
+  FIND [=[gravity_base_acceleration(m).vector()]=]
+  WRONG [=[2.0 * gravity_base_acceleration(m).vector()]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[y\(k\), the composite-body bias: wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where gravity is on: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 6.6: y(k) against soa::composite_bias, and R alpha+ + y against the Newton-Euler f.
 TEST(Exercise6_6_CompositeBias, MatchesNewtonEulerAndLibrary) {
   Random<double> rnd;
@@ -635,6 +699,16 @@ TEST(Exercise6_6_CompositeBias, MatchesNewtonEulerAndLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 6.7
+soa_plant(6.7 the-given-bug
+  FIND [=[tau_bar * Pk]=]
+  WRONG [=[Pk * tau_bar]=] TYPE [=[Mat6]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your P\(k\) is the given code's]=]
+  NAMED [=[likely mistake \(the given bug\): your P\(k\) is the given code's]=])
+*/
+// clang-format on
 // 6.7: the stub's Riccati sweep with its bug fixed, against soa::articulated_inertias.
 TEST(Exercise6_7_RiccatiSweepBug, MatchesLibrary) {
   Random<double> rnd;
@@ -671,6 +745,19 @@ TEST(Exercise6_7_RiccatiSweepBug, MatchesLibrary) {
   }
 }
 
+// clang-format off
+/* planted mistakes of 6.8
+soa_plant(6.8 wrong-part
+  FIND [=[MatX<double>(m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset))]=]
+  WRONG [=[(MatX<double>(6, m.body(k).hinge.nv())
+              << m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset).bottomRows(3),
+          m.body(k).hinge.H_star(theta.data() + m.body(k).q_offset).topRows(3)).finished()]=]
+  TYPE [=[MatX<double>]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your columns have the angular and the linear rows swapped]=]
+  NAMED [=[likely mistake \(wrong part\): your columns have the angular and the linear rows swapped]=])
+*/
+// clang-format on
 // 6.8: the predicted null spaces of P+(k), against the library's P+(k): as many columns as
 // 6 - rank P+(k), in its null space, independent. Each body of each chain is a case.
 TEST(Exercise6_8_PPlusNullSpace, MatchesLibrary) {
@@ -808,6 +895,22 @@ VecX shaken_variant(const soa::Model& m, const VecX& theta, const Library& lib, 
   return bd;
 }
 
+// clang-format off
+/* planted mistakes of 6.9
+soa_plant(6.9 sign
+  FIND [=[-art.G[j].transpose() * alpha_plus]=]
+  WRONG [=[art.G[j].transpose() * alpha_plus]=] TYPE [=[VecX<double>]=]
+  EXPECT [=[beta_dot, the hinge accelerations: wrong in [0-9]+ of [0-9]+ cases.*the checker knows this mistake: it names it after 4 failed runs.*where, in case [0-9]+ \(the simplest that fails\): beta_dot of body]=]
+  REJECT [=[likely mistake|perhaps \(|G\*\(k\) alpha|phi\*\(k\+1,k\) alpha|your beta_dot\(k\) is \+G\*\(k\) alpha\+\(k\)]=]
+  NAMED [=[likely mistake \(sign\): your beta_dot\(k\) is \+G\*\(k\) alpha\+\(k\)]=])
+soa_plant(6.9 wrong-frame
+  FIND [=[ws.phi[j].matrix().transpose() * alpha]=]
+  WRONG [=[alpha]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[beta_dot, the hinge accelerations: wrong in [0-9]+ of [0-9]+ cases.*the checker knows this mistake: it names it after 4 failed runs.*where, in case [0-9]+ \(the simplest that fails\): beta_dot of body]=]
+  REJECT [=[likely mistake|perhaps \(|G\*\(k\) alpha|phi\*\(k\+1,k\) alpha|your alpha\+\(k\) is alpha\(k\+1\) as it is]=]
+  NAMED [=[likely mistake \(wrong frame\): your alpha\+\(k\) is alpha\(k\+1\) as it is]=])
+*/
+// clang-format on
 // 6.9: beta_dot of the chain at rest when the base accelerates, against
 // soa::forward_dynamics with gravity -a0 (gravity is the base acceleration [0; -g]).
 TEST(Exercise6_9_ShakenBase, MatchesForwardDynamics) {

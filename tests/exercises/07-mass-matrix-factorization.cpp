@@ -1,16 +1,15 @@
 // Lesson 7 exercise tests: each exercise of exercises/07-mass-matrix-factorization/exercises.hpp
 // against the library, on soa::test::kCases random chains (1 to 8 bodies whose hinge types are
-// drawn at random: tests/support/chain_case.hpp) at random configurations, from a fixed seed
-// per exercise. Each check names its quantity, and its catalogue of classic mistakes is
-// computed from the reference (tests/support/exercise_check.hpp); mistakes inside a
-// recursion come from a small parameterized reference in this file (minv_diagonal_variant(),
-// solve_variant(), ...). Built against the solutions (ctest), the students' exercises (make
-// exercises) and the solutions with planted mistakes (07-mass-matrix-factorization.plant.cmake).
-//
-// Tolerances: a case passes when its error is at most 4 units, a unit being eps times the
-// size 6n of the operators times kappa = max_k |P(k)| |D^-1(k)| (the growth of rounding in
-// G = P H* D^-1) times the magnitude of the terms, or eps 6n cond(M) times the magnitude
-// where a result is compared with an inverse or a determinant of M.
+// drawn at random: tests/support/chain_case.hpp) at random configurations, from a fixed seed per
+// exercise. Each check names its quantity, and its catalogue of classic mistakes is computed from
+// the reference (tests/support/exercise_check.hpp); mistakes inside a recursion come from a small
+// parameterized reference in this file (minv_diagonal_variant(), solve_variant(), ...). Built
+// against the solutions (ctest), the students' exercises (make exercises) and the solutions with
+// planted mistakes (the "planted mistakes" blocks, tests/exercises/plant.cmake).  Tolerances: a
+// case passes when its error is at most 4 units, a unit being eps times the size 6n of the
+// operators times kappa = max_k |P(k)| |D^-1(k)| (the growth of rounding in G = P H* D^-1) times
+// the magnitude of the terms, or eps 6n cond(M) times the magnitude where a result is compared with
+// an inverse or a determinant of M.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -191,6 +190,14 @@ MatX psi_variant(const Parts& p, PsiV v) {
   return inverse_of_unit_lower(I - E);
 }
 
+// clang-format off
+/* planted mistakes of 7.1
+soa_plant(7.1 transpose
+  FIND [=[phi * r.art.tau_bar(m, x.theta, k)]=]
+  WRONG [=[phi.transpose() * r.art.tau_bar(m, x.theta, k)]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your E_psi\(k\+1,k\) is phi\*\(k\+1,k\) tau_bar\(k\)]=])
+*/
+// clang-format on
 TEST(Exercise7_1_KAndPsi, MatchesLibraryAndIdentity) {
   Random<double> rnd(701);
   // Declared in the order of their reports (the table shows the first failure).
@@ -267,6 +274,14 @@ MatX upper_and_diagonal(const soa::Model& m, const MatX& L) {
   return U;
 }
 
+// clang-format off
+/* planted mistakes of 7.2
+soa_plant(7.2 sign
+  FIND [=[I - op.H * psi * K]=]
+  WRONG [=[I + op.H * psi * K]=] TYPE [=[MatX]=]
+  EXPECT [=[likely mistake \(sign\): your L_inv is I \+ H psi K]=])
+*/
+// clang-format on
 TEST(Exercise7_2_InnovationsFactor, FactorsTheMassMatrix) {
   Random<double> rnd(702);
   // Declared in the order of their reports (the table shows the first failure).
@@ -382,6 +397,22 @@ MatX minv_diagonal_variant(const Parts& p, DiagV v) {
   return out;
 }
 
+// clang-format off
+/* planted mistakes of 7.3
+soa_plant(7.3 wrong-frame
+  FIND [=[phi.transpose() * Upsilon * phi]=]
+  WRONG [=[Upsilon]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your Upsilon\+\(k\) is Upsilon\(k\+1\) as it is]=])
+soa_plant(7.3 transpose
+  FIND [=[tau.transpose() * U * tau]=]
+  WRONG [=[tau * U * tau.transpose()]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your Upsilon\(k\) = tau_bar\(k\) U tau_bar\*\(k\)]=])
+soa_plant(7.3 sign
+  FIND [=[D_inv + G.transpose() * U * G]=]
+  WRONG [=[D_inv - G.transpose() * U * G]=] TYPE [=[MatX]=]
+  EXPECT [=[likely mistake \(sign\): your M\^-1\(k,k\) is D\^-1\(k\) - G\* Upsilon\+ G]=])
+*/
+// clang-format on
 TEST(Exercise7_3_MinvDiagonal, MatchesMassMatrixInverse) {
   Random<double> rnd(703);
   Check check("M^-1(k,k), the diagonal blocks of M^-1", 4.0);
@@ -481,6 +512,22 @@ VecX solve_variant(const Parts& p, const VecX& b, SolveV v) {
   return y;
 }
 
+// clang-format off
+/* planted mistakes of 7.4
+soa_plant(7.4 neighbour-index
+  FIND [=[r.ws.phi[j - 1].apply(z_plus)]=]
+  WRONG [=[r.ws.phi[j].apply(z_plus)]=]
+  EXPECT [=[likely mistake \(neighbour index\): your z\(k\) takes phi\(k\+1,k\) z\+\(k-1\)]=])
+soa_plant(7.4 dropped-gain
+  FIND [=[z.vector() + r.art.G[j] * eps]=]
+  WRONG [=[z.vector()]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your z\+\(k\) is z\(k\): the gain term]=])
+soa_plant(7.4 alpha-doubled
+  FIND [=[alpha_plus.vector() + H_star(m, x, k) * yk]=]
+  WRONG [=[2.0 * alpha_plus.vector() + H_star(m, x, k) * yk]=] TYPE [=[Vec6<double>]=]
+  EXPECT [=[symptom: it fails only where there is more than one body: [0-9]+ of those [0-9]+ cases fail, and every other case passes]=])
+*/
+// clang-format on
 TEST(Exercise7_4_Solve, SolvesMassMatrixSystem) {
   Random<double> rnd(704);
   // Declared in the order of their reports (the table shows the first failure).
@@ -537,6 +584,20 @@ TEST(Exercise7_4_Solve, SolvesMassMatrixSystem) {
 
 // --- 7.5 ------------------------------------------------------------------------------------------
 
+// clang-format off
+/* planted mistakes of 7.5
+soa_plant(7.5 sign
+  FIND [=[std::log(MatX(D).determinant())]=]
+  WRONG [=[-std::log(MatX(D).determinant())]=] TYPE [=[double]=]
+  EXPECT [=[likely mistake \(sign\): your result is sum_k log det D\^-1\(k\) = -log det M]=])
+# Not in the catalogue: the result doubled. What was measured: the constant factor.
+soa_plant(7.5 doubled
+  FIND [=[double(std::log(MatX(D).determinant()))]=]
+  WRONG [=[2.0 * std::log(MatX(D).determinant())]=] TYPE [=[double]=]
+  EXPECT [=[log det M: wrong in [0-9]+ of [0-9]+ cases.*symptom: your result is 2.000 times the expected value in every (failing )?case]=]
+  REJECT [=[the formula itself|likely mistake]=])
+*/
+// clang-format on
 TEST(Exercise7_5_LogDet, EqualsLogDetOfM) {
   Random<double> rnd(705);
   Check check("log det M", 4.0);
@@ -602,6 +663,14 @@ MatX omega_variant(const Parts& p, OmegaV v) {
   return Omega;
 }
 
+// clang-format off
+/* planted mistakes of 7.6
+soa_plant(7.6 transpose
+  FIND [=[u.Upsilon[std::size_t(i - 1)] * psi_ij]=]
+  WRONG [=[psi_ij.transpose() * u.Upsilon[std::size_t(i - 1)]]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your Omega\(i,j\) is psi\*\(i,j\) Upsilon\(i\)]=])
+*/
+// clang-format on
 TEST(Exercise7_6_OmegaFromUpsilon, MatchesPhiHMinvHPhiAndLibrary) {
   Random<double> rnd(706);
   // Declared in the order of their reports (the table shows the first failure).
@@ -700,6 +769,14 @@ MatX minv_upsilon_variant(const Parts& p, MinvV v) {
   return Minv;
 }
 
+// clang-format off
+/* planted mistakes of 7.7
+soa_plant(7.7 dropped-term
+  FIND [=[z - MatX(art.G[std::size_t(k - 1)]) * Hz]=]
+  WRONG [=[z]=] TYPE [=[MatX]=]
+  EXPECT [=[likely mistake \(dropped term\): your z_i\(k\+1\) is phi\(k\+1,k\) z_i\(k\)]=])
+*/
+// clang-format on
 TEST(Exercise7_7_MinvFromUpsilon, MatchesLibraryAndDenseInverse) {
   Random<double> rnd(707);
   // Declared in the order of their reports (the table shows the first failure).
@@ -783,6 +860,19 @@ Mat6 opspace_variant(const Parts& p, int k, const soa::Pose& frame, OpV v) {
   return X.transpose() * U * X;
 }
 
+// clang-format off
+/* planted mistakes of 7.8
+soa_plant(7.8 wrong-frame
+  FIND [=[phi.transpose() * U * phi]=]
+  WRONG [=[U]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your result is Upsilon\(k\), at O_k]=])
+soa_plant(7.8 d-for-d-inverse
+  FIND [=[Hs * MatX(r.art.D_inv[i]) * Hs.transpose()]=]
+  WRONG [=[Hs * MatX(r.art.D[i]) * Hs.transpose()]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[symptom: in every case, your result matches the expected value with D\(j\) in place of D\^-1\(j\) in the Upsilon recursion]=]
+  REJECT [=[the formula itself|likely mistake]=])
+*/
+// clang-format on
 TEST(Exercise7_8_OperationalInverseInertia, MatchesDenseJMinvJStar) {
   Random<double> rnd(708);
   Check check("J M^-1 J*, the operational-space inverse inertia", 4.0);
@@ -933,6 +1023,16 @@ MatX measured_pattern(const Case& c) {
   return p;
 }
 
+// clang-format off
+/* planted mistakes of 7.10
+soa_plant(7.10 neighbour-index
+  FIND [=[f + 1]=]
+  WRONG [=[f]=] TYPE [=[int]=]
+  EXPECT [=[your pattern of the non-zero blocks of M\^-1: wrong in [0-9]+ of [0-9]+ cases.*the checker knows this mistake: it names it after 3 failed runs.*where, in case [0-9]+ \(the simplest that fails\): the row of body]=]
+  REJECT [=[likely mistake|perhaps \(|strictly between|psi\(k,i\+1\)]=]
+  NAMED [=[likely mistake \(neighbour index\): your zeros include the free hinge's own blocks with the bodies outboard]=])
+*/
+// clang-format on
 TEST(Exercise7_10_MinvZeroPattern, PredictsTheZerosOfTheInverse) {
   Random<double> rnd(710);
   // The pattern is compared exactly (entries 0 and 1).
@@ -1025,6 +1125,16 @@ MatX sweep_variant(const Parts& p, SweepV v) {
   return A;
 }
 
+// clang-format off
+/* planted mistakes of 7.11
+soa_plant(7.11 dropped-term
+  FIND [=[r.art.tau_bar(m, x.theta, k) * z]=]
+  WRONG [=[z]=] TYPE [=[MatX]=]
+  EXPECT [=[A, the dense operator of the sweep, against the library's operator: wrong in [0-9]+ of [0-9]+ cases.*the checker knows this mistake: it names it after 4 failed runs.*where, in case [0-9]+ \(the simplest that fails\): A\(]=]
+  REJECT [=[likely mistake|perhaps \(|tau_bar\(j\) z\(j\)]=]
+  NAMED [=[likely mistake \(dropped term\): your A\(k,i\) is -H\(k\) phi\(k,i\) G\(i\)]=])
+*/
+// clang-format on
 TEST(Exercise7_11_SweepOperator, IsTheInverseFactor) {
   Random<double> rnd(711);
   // Declared in the order of their reports (the table shows the first failure).
@@ -1108,6 +1218,25 @@ VecX beta_variant(const Parts& p, const VecX& eta, BetaV v) {
   return beta;
 }
 
+// clang-format off
+/* planted mistakes of 7.12
+soa_plant(7.12 bug-left
+  FIND [=[Hs * beta_k]=]
+  WRONG [=[Hs * eta_k]=] TYPE [=[VecX]=]
+  EXPECT [=[beta, recovered from eta = \[I \+ H phi K\]\* beta: wrong in [0-9]+ of [0-9]+ cases.*the checker knows this mistake: it names it after 3 failed runs.*where, in case [0-9]+ \(the simplest that fails\): beta of body]=]
+  REJECT [=[likely mistake|perhaps \(|eta\(k\)|beta\(k\)]=]
+  NAMED [=[likely mistake \(the bug\): the bug is still there: your V\(k\) adds H\*\(k\) eta\(k\)]=])
+soa_feedback_test(7.12 bug-left
+  [=[likely mistake \(the bug\): the bug is still there: your V\(k\) adds H\*\(k\) eta\(k\)]=])
+# Not in the catalogue: V(k+1) not carried to O_k by phi*(k+1,k). What was measured: only the
+# cases with more than one body fail; no cause is guessed.
+soa_plant(7.12 dropped-phi-star
+  FIND [=[r.ws.phi[std::size_t(k - 1)].transpose_apply(V)]=]
+  WRONG [=[V]=] TYPE [=[Velocity]=]
+  EXPECT [=[beta, recovered from eta = \[I \+ H phi K\]\* beta: wrong in [0-9]+ of [0-9]+ cases.*symptom: it fails only where there is more than one body: [0-9]+ of those [0-9]+ cases fail, and every other case passes.*known mistakes are named after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|index|direction of the sweep]=])
+*/
+// clang-format on
 TEST(Exercise7_12_BetaFromEta, InvertsTheInnovationsCoordinates) {
   Random<double> rnd(712);
   Check check("beta, recovered from eta = [I + H phi K]* beta", 4.0);

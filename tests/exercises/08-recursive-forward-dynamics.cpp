@@ -3,11 +3,11 @@
 // soa::test::kCases random cases from the fixed seed: chains of 1 to 7 bodies of the hinge types
 // the exercise allows, drawn at random, random states and hinge forces, with the features the
 // exercise allows varying independently across the cases (at rest, gravity, external forces,
-// springs: draw() below). Each check names its quantity, and its catalogue of classic mistakes
-// is computed from the reference by the small parameterized sweeps of this file
-// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students'
-// exercises (make exercises) and the solutions with planted mistakes
-// (08-recursive-forward-dynamics.plant.cmake).
+// springs: draw() below). Each check names its quantity, and its catalogue of classic mistakes is
+// computed from the reference by the small parameterized sweeps of this file
+// (tests/support/exercise_check.hpp). Built against the solutions (ctest), the students' exercises
+// (make exercises) and the solutions with planted mistakes (the "planted mistakes" blocks,
+// tests/exercises/plant.cmake).
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -230,6 +230,19 @@ TipSweep tip_sweep(const Case& c, Tip v) {
   return r;
 }
 
+// clang-format off
+/* planted mistakes of 8.1
+soa_plant(8.1 neighbour-index
+  FIND [=[ws.phi[j - 1].apply(Force(r.z_plus[j - 1]))]=]
+  WRONG [=[ws.phi[j].apply(Force(r.z_plus[j - 1]))]=]
+  EXPECT [=[likely mistake \(neighbour index\): your z\(k\) takes phi\(k\+1,k\) z\+\(k-1\)]=])
+soa_plant(8.1 coriolis-doubled
+  FIND [=[art.P[j] * ws.a[j].vector() + gyroscopic_force(B.M, ws.V[j]).vector()]=]
+  WRONG [=[2.0 * art.P[j] * ws.a[j].vector() + gyroscopic_force(B.M, ws.V[j]).vector()]=]
+  TYPE [=[Vec6]=]
+  EXPECT [=[symptom: it fails only where it moves \(the velocities are not zero\): [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 8.1: z, z+, epsilon, nu of a revolute chain (no gravity, external forces or springs) against
 // soa::forward_dynamics's, to rounding scaled by |P(k)| |D^{-1}(k)|.
 TEST(Exercise8_1_TipToBase, MatchesLibrary) {
@@ -318,6 +331,18 @@ BaseSweep base_sweep(const Case& c, Base v) {
   return r;
 }
 
+// clang-format off
+/* planted mistakes of 8.2
+soa_plant(8.2 transpose
+  FIND [=[ws.phi[j].transpose_apply(next)]=]
+  WRONG [=[Acceleration(ws.phi[j].matrix() * next.vector())]=]
+  EXPECT [=[likely mistake \(transpose\): your alpha\+\(k\) is phi\(k\+1,k\) alpha\(k\+1\)]=])
+soa_plant(8.2 wrong-frame
+  FIND [=[G.transpose() * alpha_plus.vector()]=]
+  WRONG [=[G.transpose() * next.vector()]=] TYPE [=[VecX<double>]=]
+  EXPECT [=[likely mistake \(wrong frame\): your beta_dot\(k\) takes G\*\(k\) alpha\(k\+1\)]=])
+*/
+// clang-format on
 // 8.2: beta_dot and alpha from the library's phi, a, G, nu and the base acceleration, against
 // soa::forward_dynamics's, to rounding scaled by |P(k)| |D^{-1}(k)|.
 TEST(Exercise8_2_BaseToTip, MatchesLibrary) {
@@ -440,6 +465,26 @@ VecX fd_1dof(const Case& c, FD1 v) {
   return bd;
 }
 
+// clang-format off
+/* planted mistakes of 8.3
+soa_plant(8.3 transpose
+  FIND [=[phi * P_plus[j - 1] * phi.transpose()]=]
+  WRONG [=[phi.transpose() * P_plus[j - 1] * phi]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(transpose\): your P\(k\) takes phi\*\(k,k-1\) P\+\(k-1\)]=])
+soa_plant(8.3 external-sign
+  FIND [=[f_ext[j].vector()]=]
+  WRONG [=[-f_ext[j].vector()]=] TYPE [=[Vec6]=]
+  EXPECT [=[likely mistake \(sign\): your b\(k\) adds f_ext\(k\)]=])
+soa_plant(8.3 no-projection
+  FIND [=[P - g[j] * Ps.transpose()]=]
+  WRONG [=[P]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(dropped term\): your P\(k\) takes phi P\(k-1\) phi\*]=])
+soa_plant(8.3 pitch-doubled
+  FIND [=[h.pitch * h.axis]=]
+  WRONG [=[2 * h.pitch * h.axis]=] TYPE [=[Vec3<double>]=]
+  EXPECT [=[symptom: it fails only where a hinge is helical: [0-9]+ of those [0-9]+ [a-z]+s fail, and every other [a-z]+ passes]=])
+*/
+// clang-format on
 // 8.3: the whole algorithm for revolute, prismatic and helical hinges with gravity and
 // external forces, against soa::forward_dynamics, to n eps cond(M).
 TEST(Exercise8_3_ForwardDynamics1Dof, MatchesLibrary) {
@@ -475,6 +520,14 @@ TEST(Exercise8_3_ForwardDynamics1Dof, MatchesLibrary) {
 
 // --- 8.4 ----------------------------------------------------------------------------------------
 
+// clang-format off
+/* planted mistakes of 8.4
+soa_plant(8.4 wrong-inertia
+  FIND [=[fd.art.P_plus[j]]=]
+  WRONG [=[fd.art.P[j]]=] TYPE [=[Mat6<double>]=]
+  EXPECT [=[likely mistake \(wrong inertia\): your f\(k\) is P\(k\) alpha\+\(k\) \+ z\+\(k\)]=])
+*/
+// clang-format on
 // 8.4: f(k) = P+(k) alpha+(k) + z+(k) and H(k) f(k) against Newton-Euler inverse dynamics at
 // the library's beta_dot (f(k), and T + tau_s), to n eps cond(M).
 TEST(Exercise8_4_InterBodyForces, MatchNewtonEuler) {
@@ -602,6 +655,14 @@ VecX rk4(const Case& c, double h, RK v) {
   return out;
 }
 
+// clang-format off
+/* planted mistakes of 8.5
+soa_plant(8.5 equal-weights
+  FIND [=[h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)]=]
+  WRONG [=[h / 4 * (k1v + k2v + k3v + k4v)]=] TYPE [=[VecX<double>]=]
+  EXPECT [=[likely mistake \(wrong weights\)]=])
+*/
+// clang-format on
 // 8.5: one RK4 step on chains of hinges with theta_dot = beta (gravity and springs in some),
 // against RK4 built on soa::forward_dynamics, to n eps cond(M) of the step's size.
 TEST(Exercise8_5_Rk4Step, MatchesReferenceRK4) {
@@ -695,6 +756,16 @@ VecX aba(const Case& c, unsigned v) {
   return bd;
 }
 
+// clang-format off
+/* planted mistakes of 8.6
+soa_plant(8.6 bug-kept
+  FIND [=[Hs * bd]=]
+  WRONG [=[Hs * nu[j]]=] TYPE [=[Vec6]=]
+  EXPECT [=[the checker knows this mistake: it names it after 3 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|your beta_dot is the given code's]=]
+  NAMED [=[likely mistake \(bug still there\): your beta_dot is the given code's]=])
+*/
+// clang-format on
 // 8.6: the given code with its bug fixed, against soa::forward_dynamics, to n eps cond(M).
 TEST(Exercise8_6_FindTheBug, MatchesLibrary) {
   Random<double> rnd;
@@ -787,6 +858,16 @@ VecX hybrid(const Case& c, const std::vector<bool>& pres, const VecX& T, const V
   return out;
 }
 
+// clang-format off
+/* planted mistakes of 8.7
+soa_plant(8.7 dropped-term
+  FIND [=[z + P * (Hs * beta_dot.segment(B.v_offset, nk))]=]
+  WRONG [=[z]=] TYPE [=[Vec6]=]
+  EXPECT [=[the checker knows this mistake: it names it after 5 failed runs]=]
+  REJECT [=[likely mistake|perhaps \(|across a prescribed hinge your z\+\(k\) is z\(k\)]=]
+  NAMED [=[likely mistake \(dropped term\): across a prescribed hinge your z\+\(k\) is z\(k\)]=])
+*/
+// clang-format on
 // 8.7: hybrid dynamics with random hinges prescribed, against the dense solution with the
 // composite-body mass matrix: M_ff beta_dot_f = T_f - C_f - M_fp beta_dot_p, T_p = M_p.
 // beta_dot + C_p, to n eps cond(M).

@@ -1,10 +1,17 @@
 # Planted mistakes: a test of the exercise checker itself (tests/support/exercise_check.hpp).
 #
-# For lesson NN, tests/exercises/NN-topic.plant.cmake lists mistakes to plant in the
-# lesson's solutions, each as
+# For lesson NN, the checker tests/exercises/NN-topic.cpp holds, next to each exercise's test
+# (its cases and its catalogue of classic mistakes), the mistakes to plant in the lesson's
+# solutions, as a comment block CMake reads at configure time:
+#   // clang-format off
+#   /* planted mistakes of N.K
 #   soa_plant(<exercise> <id> FIND <text> WRONG <text> [TYPE <type>] EXPECT <regex>)
-# <text> is an expression of solutions/NN-topic/solutions.cpp (found exactly once; no
-# semicolons) and the wrong expression that replaces it; TYPE names the type both convert
+#   ...
+#   */
+#   // clang-format on
+# The lines between the first line and "*/" are CMake code (soa_plant(), soa_feedback_test(),
+# comments). <text> is an expression of solutions/NN-topic/solutions.cpp (found exactly once;
+# no semicolons) and the wrong expression that replaces it; TYPE names the type both convert
 # to when their types differ (Eigen expressions). The build compiles one copy of the
 # solutions with every mistake in place, each switched on at run time by SOA_PLANT=<id>
 # (tests/support/planted.hpp) — the copy exNN-solutions links, off unless SOA_PLANT says —
@@ -49,7 +56,7 @@ endfunction()
 # the planted mistake <id> on (tests/exercises/feedback_check.sh): its first runs do not name
 # it, the run after the number of failed runs its statement gives does, and so does a first
 # run after the whole hint ladder (make exercises HINT=<exercise>). <regex> is the named
-# message, as in NAMED. Called from a lesson's plant list, after the soa_plant() of <id>.
+# message, as in NAMED. Called from a block of planted mistakes, after the soa_plant() of <id>.
 function(soa_feedback_test exercise id regex)
   string(REGEX MATCH "^([0-9]+)\\.([0-9]+)$" _ "${exercise}")
   set(nn_ex ${CMAKE_MATCH_1})
@@ -63,14 +70,47 @@ function(soa_feedback_test exercise id regex)
   set_tests_properties(${name} PROPERTIES LABELS exercises)
 endfunction()
 
-# soa_planted_solutions(<nn> <NN-topic> <list file>): the planted build and its tests.
-function(soa_planted_solutions nn dir list_file)
+# soa_plant_blocks(<checker> <out>): the CMake code of the checker's blocks of planted
+# mistakes ("/* planted mistakes of N.K" ... "*/"), in the order of the file.
+function(soa_plant_blocks checker out)
+  file(READ ${checker} text)
+  set(code "")
+  set(marker "/* planted mistakes of ")
+  while(TRUE)
+    string(FIND "${text}" "${marker}" at)
+    if(at EQUAL -1)
+      break()
+    endif()
+    string(SUBSTRING "${text}" ${at} -1 text)
+    string(FIND "${text}" "\n" eol)
+    string(FIND "${text}" "*/" end)
+    if(end EQUAL -1 OR eol EQUAL -1 OR end LESS eol)
+      message(FATAL_ERROR "${checker}: a block of planted mistakes has no closing */ line")
+    endif()
+    string(SUBSTRING "${text}" 0 ${eol} first)
+    math(EXPR from "${eol} + 1")
+    math(EXPR len "${end} - ${from}")
+    string(SUBSTRING "${text}" ${from} ${len} block)
+    string(APPEND code "# ${first}\n${block}")
+    math(EXPR end "${end} + 2")
+    string(SUBSTRING "${text}" ${end} -1 text)
+  endwhile()
+  set(${out} "${code}" PARENT_SCOPE)
+endfunction()
+
+# soa_planted_solutions(<nn> <NN-topic> <checker>): the planted build and its tests, from the
+# blocks of planted mistakes of the checker tests/exercises/NN-topic.cpp.
+function(soa_planted_solutions nn dir checker)
   set(solution ${PROJECT_SOURCE_DIR}/solutions/${dir}/solutions.cpp)
   file(READ ${solution} _soa_src)
   set(_soa_plants "")
-  set(_soa_plant_list ${list_file})
+  set(_soa_plant_list ${checker})
+  soa_plant_blocks(${checker} code)
+  set(list_file ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/plants.cmake)
+  file(WRITE ${list_file}.new "${code}")
+  file(COPY_FILE ${list_file}.new ${list_file} ONLY_IF_DIFFERENT)
   include(${list_file})
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${list_file} ${solution})
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${checker} ${solution})
   set(out ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/solutions.cpp)
   file(WRITE ${out}.new "#include \"planted.hpp\"\n#line 1 \"${solution}\"\n${_soa_src}")
   file(COPY_FILE ${out}.new ${out} ONLY_IF_DIFFERENT)

@@ -6,9 +6,11 @@
 #   - each lesson has at least two exercises of level 3 (worked out: derive, predict, find the
 #     bug), and each of those a ladder of at least three hints in hints.md with the lesson
 #     section that teaches it ("Taught in:");
-#   - the lesson's README table has a row for each exercise;
 #   - the lesson program and the lesson's page in the notes point to each exercise where its
-#     material is taught ("now do N.K");
+#     material is taught: a "now do" that names it, or, found from its statement, the "now
+#     do" of the lesson's section that the statement cites ("lesson L, section K, "Title"":
+#     the one in section K of the lesson program, and the one of the page that names an
+#     exercise that one names);
 #   - make exercises HINT=N.K shows the hints one at a time (tests/exercises/hint.sh);
 #   - each level 3 statement says after how many failed runs the checker names a mistake it
 #     knows ("after N failed runs", read by tests/support/exercise_check.hpp);
@@ -38,14 +40,30 @@ for dir in exercises/[0-9][0-9]-*/; do
     for used in $(echo "$meta" | sed -n 's/.*uses \(.*\)\.\*$/\1/p' | grep -o '[0-9]*\.[0-9]*'); do
       echo "$all" | grep -qx "$used" || say "$hpp: exercise $ex uses $used, which does not exist"
     done
-    grep -q "^| $ex |" "$dir/README.md" || say "$dir/README.md: no row for exercise $ex"
     exre=$(echo "$ex" | sed 's/\./\\./')
+    # The sections of its own lesson the statement cites, and the exercises the "now do" of
+    # those sections of the lesson program name.
+    cited=$(awk -v ex="$ex" '/\*\*Exercise /{on = index($0, "**Exercise " ex ":") || index($0, "**Exercise " ex " ")} on' "$hpp" |
+              sed 's|^ *///||' | tr '\n' ' ' | tr -s ' ' |
+              grep -oE "[Ll]esson $lesson, sections? [0-9]+" | grep -oE '[0-9]+$' || true)
+    program=$(ls lessons/$nn-*/lesson.cpp 2>/dev/null | head -1)
+    named=""
+    for k in $cited; do
+      [ -n "$program" ] || break
+      named="$named $(awk -v k="$k" '/^ *\/\/\/ +## [0-9]+\. /{on = ($3 == k ".")} on' "$program" |
+                       grep -i -A2 "now do" | grep -oE '\b[0-9]+\.[0-9]+\b' || true)"
+    done
     for prog in lessons/$nn-*/lesson.cpp docs/lesson$nn.md; do
       [ -f "$prog" ] || continue
       # "Now do exercises 6.1 (...), 6.4 (...)": the sentence may run over three lines.
-      if ! grep -i -A2 "now do" "$prog" | grep -q "\b$exre\b"; then
-        say "$prog: no 'now do $ex' where its material is taught"
-      fi
+      pointers=$(grep -i -A2 "now do" "$prog" || true)
+      echo "$pointers" | grep -q "\b$exre\b" && continue
+      found=0
+      for other in $named; do
+        echo "$pointers" | grep -q "\b$(echo "$other" | sed 's/\./\\./')\b" && found=1
+      done
+      [ $found = 1 ] ||
+        say "$prog: no 'now do $ex' where its material is taught (nor in the section its statement cites)"
     done
     case "$meta" in
       *"Level 3 of 3"*)
@@ -105,5 +123,5 @@ for dir in exercises/[0-9][0-9]-*/; do
   done
   [ "$level3" -ge 2 ] || say "$hpp: lesson $lesson has $level3 exercises of level 3 (worked out), fewer than 2"
 done
-[ $fail = 0 ] && echo "every statement has its level, time and uses; hints, rows and pointers are in place"
+[ $fail = 0 ] && echo "every statement has its level, time and uses; hints and pointers are in place"
 exit $fail

@@ -8,7 +8,7 @@
 # Included by exercises/CMakeLists.txt for soa_stub_status(); also a script:
 #   cmake -DROOT=<source dir> -P tests/exercises/stubs.cmake            lists each lesson's state
 #   cmake -DROOT=<source dir> -DWRITE=ON -P tests/exercises/stubs.cmake rewrites stubs.sha256
-#     (after changing a statement or a stub: `make stub-sums`)
+#     (after changing a statement or a stub: `make stubs`, tests/exercises/stubs.sh)
 if(CMAKE_SCRIPT_MODE_FILE)
   cmake_policy(VERSION 3.25)
 endif()
