@@ -35,7 +35,7 @@ build_failed() {
 first=$(grep -m1 '^lesson|' "$list")
 first_target=$(echo "$first" | cut -d'|' -f3)
 echo
-if cmake --build "$build" -- -n "$first_target" 2>/dev/null | grep -q 'Linking'; then
+if [ ! -x "$(echo "$first" | cut -d'|' -f4)" ]; then
   echo "Building the library and lesson 1 (a few minutes the first time; the build's output: $log)"
 fi
 cmake --build "$build" -j "$jobs" --target "$first_target" >"$log" 2>&1 \
@@ -43,12 +43,11 @@ cmake --build "$build" -j "$jobs" --target "$first_target" >"$log" 2>&1 \
 echo
 run_entry lesson "$(echo "$first" | cut -d'|' -f2)" "$(echo "$first" | cut -d'|' -f4)"
 
-# The rest in one background build. A program the build links is ready when ninja's log has
-# its line (ninja appends one as each step ends, with the output's time, after this start); one
-# already up to date is ready now.
+# The rest in one background build. A program is ready when ninja's log has its line (ninja
+# appends one as each step ends, with the output's time, after this start), or, for one that
+# was up to date, when the build has ended.
 rest=$(grep -v "^lesson|$(echo "$first" | cut -d'|' -f2)|" "$list" | grep -E '^(lesson|lab)\|')
 targets=$(echo "$rest" | cut -d'|' -f3 | tr '\n' ' ')
-relink=$(cmake --build "$build" -- -n $targets 2>/dev/null | sed -n 's/.*Linking CXX executable //p')
 root=$(cd "$build" && pwd)
 since=$(date +%s%N)
 cmake --build "$build" -j "$jobs" --target $targets >>"$log" 2>&1 &
@@ -63,10 +62,9 @@ linked() {
 # wait_for <program>: returns when it is built (0) or the build ended without it (1).
 wait_for() {
   rel=${1#"$root"/}
-  echo "$relink" | grep -qx "$rel" || return 0
   until linked "$rel"; do
     if ! kill -0 "$builder" 2>/dev/null; then
-      linked "$rel"
+      [ -x "$1" ]
       return
     fi
     sleep 1
