@@ -1,0 +1,53 @@
+#!/bin/sh
+# The student release's text (tests/release/release.sh): the sentences, rows and links about
+# the solutions, the planted mistakes, the author's page and the release itself, taken out
+# or said for a student. Each edit must change its file: one whose text is gone stops the
+# release, naming the file and the edit (then update the edit here).
+#   student_text.sh <release dir>
+set -eu
+dir=$1
+
+# edit <file> <sed script>
+edit() {
+  sed "$2" "$dir/$1" >"$dir/$1.new"
+  if cmp -s "$dir/$1" "$dir/$1.new"; then
+    rm -f "$dir/$1.new"
+    echo "make release: $1: this edit of tests/release/student_text.sh finds its text no more: $2"
+    exit 1
+  fi
+  mv "$dir/$1.new" "$dir/$1"
+}
+
+edit README.md 's/exercise tests against the solutions$/every exercise fails on its stub/'
+edit README.md '/^`make test` also runs `make exercises` itself/,/(`ctest -R exercises\.probe`)\.$/c\
+`make test` also runs probe "students" of `make exercises` with an endless loop, a flood of\
+output, an uninitialised variable, an index past the end, a crash inside the checker and\
+forbidden inline calls (`ctest -R exercises.probe`).'
+edit README.md 's/ How to add an exercise: the$//'
+edit README.md '/^notes'"'"' page "Adding an exercise"/d'
+edit README.md '/^| `solutions\/` |/d'
+edit README.md 's/ and the planted mistakes that test it (in the same file, next to each exercise'"'"'s test: `tests\/exercises\/plant\.cmake`)//'
+edit README.md 's/; `solutions\/NN-topic\/` has the reference code (try first)\./\./'
+edit README.md '/^## Instructors$/,/^## /{
+/^## Instructors$/d
+/^## /!d
+}'
+
+edit docs/mainpage.md 's/, and the exercise tests against the reference solutions |$/, and every exercise against its stub (each must fail) |/'
+edit docs/mainpage.md 's/classic mistakes, planted mistakes)/classic mistakes)/'
+edit docs/mainpage.md '/^| the reference solutions |/d'
+edit docs/mainpage.md '/\\subpage adding_an_exercise\.$/d'
+edit docs/mainpage.md '/\\subpage instructors\.$/d'
+edit docs/mainpage.md 's/gives the next hint of a ladder, and$/gives the next hint of a ladder./'
+edit docs/mainpage.md '/^ *`solutions\/NN-topic\/` has the reference code (try first)\.$/d'
+
+edit exercises/01-spatial-notation/README.md '/^A worked solution for each exercise is in/,/^Try the exercises before you look at it\.$/d'
+
+edit Makefile 's/exercise tests against the solutions$/every exercise failing on its stub/'
+edit Makefile 's/^# built\. make test runs this same recipe on the solutions (exercises\.student-config)\.$/# built./'
+edit Makefile 's/: exercises\/ itself\. The test of this$/: exercises\/ itself./'
+edit Makefile '/^# configuration (tests\/exercises\/student_config\.sh) points it at the solutions\.$/d'
+edit Makefile 's/ (tests\/exercises\/stubs\.sh; docs\/adding_an_exercise\.md)\./ (tests\/exercises\/stubs.sh)./'
+edit Makefile '/^#   make release /d'
+edit Makefile 's/ format release$/ format/'
+edit Makefile '/^# The student'"'"'s repository, without the answers, into OUT/,/^$/d'
