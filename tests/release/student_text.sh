@@ -7,15 +7,17 @@
 set -eu
 dir=$1
 
-# edit <file> <sed script>
+# edit <file> <sed arguments...>
 edit() {
-  sed "$2" "$dir/$1" >"$dir/$1.new"
-  if cmp -s "$dir/$1" "$dir/$1.new"; then
-    rm -f "$dir/$1.new"
-    echo "make release: $1: this edit of tests/release/student_text.sh finds its text no more: $2"
+  file=$1
+  shift
+  sed "$@" "$dir/$file" >"$dir/$file.new"
+  if cmp -s "$dir/$file" "$dir/$file.new"; then
+    rm -f "$dir/$file.new"
+    echo "make release: $file: this edit of tests/release/student_text.sh finds its text no more: $*"
     exit 1
   fi
-  mv "$dir/$1.new" "$dir/$1"
+  mv "$dir/$file.new" "$dir/$file"
 }
 
 edit README.md 's/exercise tests against the solutions$/every exercise fails on its stub/'
@@ -42,6 +44,7 @@ edit docs/mainpage.md 's/gives the next hint of a ladder, and$/gives the next hi
 edit docs/mainpage.md '/^ *`solutions\/NN-topic\/` has the reference code (try first)\.$/d'
 
 edit exercises/01-spatial-notation/README.md '/^A worked solution for each exercise is in/,/^Try the exercises before you look at it\.$/d'
+edit exercises/01-spatial-notation/README.md -e :a -e '/^\n*$/{$d;N;ba' -e '}'
 
 edit Makefile 's/exercise tests against the solutions$/every exercise failing on its stub/'
 edit Makefile 's/^# built\. make test runs this same recipe on the solutions (exercises\.student-config)\.$/# built./'
