@@ -46,7 +46,7 @@ done <"$scratch/paths"
   sed 's|^\./|release/|' "$scratch/released"
 } >"$scratch/operands"
 cd "$scratch"
-if grep -q '[[:space:]=]' operands; then
+if cat solutions others released | grep -q '[[:space:]=]'; then
   echo "FAIL: a path with a blank or '=' in it; this check cannot read it"
   exit 1
 fi
