@@ -20,6 +20,9 @@ edit() {
   mv "$dir/$file.new" "$dir/$file"
 }
 
+edit README.md '/^Students build the lesson programs and do the exercises, instructors run the solution$/,/^checked numerically\.$/c\
+Students build the lesson programs, do the exercises and read the generated course notes.\
+Every identity the course states is checked numerically.'
 edit README.md 's/exercise tests against the solutions$/every exercise fails on its stub/'
 edit README.md '/^`make test` also runs `make exercises` itself/,/(`ctest -R exercises\.probe`)\.$/c\
 `make test` also runs probe "students" of `make exercises` with an endless loop, a flood of\
