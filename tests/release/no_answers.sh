@@ -2,8 +2,9 @@
 # ctest release.no_answers: a student release (tests/release/release.sh; ctest's
 # release.make writes it) holds no answer. It fails, naming the place, when the release has
 #   - a line distinctive to a solution: a line of solutions/NN-topic/*.cpp, blanks folded, of
-#     at least 20 characters, that no other tracked file of the source has (the checkers'
-#     blocks of planted mistakes not counted: they are pieces of the solutions too);
+#     at least 20 characters, that no other tracked file of the source has (the paths the
+#     release leaves out and the checkers' blocks of planted mistakes not counted: they carry
+#     pieces of the solutions too);
 #   - solutions/, or any other path of tests/release/instructor_only.txt;
 #   - a block of planted mistakes ("/* planted mistakes of N.K").
 # The source is its last commit, as the release takes it.
@@ -30,7 +31,10 @@ done <"$scratch/paths"
 # The files: the solutions, every other tracked file of the source, every file of the release.
 (cd "$scratch/head" && find solutions -type f -name '*.cpp' | sort) >"$scratch/solutions"
 [ -s "$scratch/solutions" ] || { echo "FAIL: no solutions/*/*.cpp in $src: nothing to look for"; exit 1; }
-(cd "$scratch/head" && find . -path ./solutions -prune -o -type f -print | sort) >"$scratch/others"
+(cd "$scratch/head" && find . -type f | sort) |
+  awk 'NR == FNR { left[$0] = 1; next }
+       { for (p = $0; p != "."; sub(/\/[^\/]*$/, "", p)) if (substr(p, 3) in left || substr(p, 3) "/" in left) next; print }' \
+    "$scratch/paths" - >"$scratch/others"
 (cd "$rel" && find . -path ./.git -prune -o -type f -print | sort) >"$scratch/released"
 
 # One awk over the three lists: phase 1 collects the solutions' lines, phase 2 drops those any
