@@ -9,6 +9,7 @@
 #                   the speed targets in both configurations judged in build/bench/speed.md
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
+#   make release    OUT=DIR: the student's repository, without the answers (instructors)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), SANITIZE=clang (the same
 # with clang, in build/sanitize-clang: its AddressSanitizer also finds uses after scope that
 # GCC's misses), BUILD_TYPE=Debug (in build/debug), TESTS=regex (make test runs only the ctest
@@ -43,7 +44,7 @@ endif
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
 .PHONY: all run test exercises stubs stub-sums docs bench compare deps compare-deps configure \
-  build clean format
+  build clean format release
 
 all: build
 
@@ -176,6 +177,11 @@ compare: compare-deps
 	  -DSOA_OUTPUT_DIR=$(CURDIR)/build \
 	  >$(CMP_DIR).cmake.log || { cat $(CMP_DIR).cmake.log; exit 1; }
 	cmake --build $(CMP_DIR) -j $(JOBS) --target compare_report
+
+# The student's repository, without the answers, into OUT: a new or empty folder
+# (tests/release/release.sh; the notes' page "Instructors").
+release:
+	@sh tests/release/release.sh "$(CURDIR)" "$(OUT)"
 
 format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')

@@ -37,7 +37,13 @@ printf '%s\n' "$section" | awk -v upto="$next" '
   n <= upto { print }'
 echo
 if [ "$seen" -ge "$total" ]; then
-  echo "(all $total hints of $ex shown; the worked solution is in solutions/$(basename "$(dirname "$file")")/solutions.cpp)"
+  # The solutions are the instructor's: a student release has none to point to.
+  solution=solutions/$(basename "$(dirname "$file")")/solutions.cpp
+  if [ -f "$solution" ]; then
+    echo "(all $total hints of $ex shown; the worked solution is in $solution)"
+  else
+    echo "(all $total hints of $ex shown)"
+  fi
 elif [ "$next" -eq "$total" ]; then
   echo "(hint $next of $total, the last: from now on make exercises names the mistake in $ex when it is one it knows)"
 else
