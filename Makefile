@@ -43,7 +43,7 @@ endif
 # The peers of `make compare` (tests/bench/compare/), only for that target.
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
-.PHONY: all run test exercises stubs stub-sums docs bench compare deps compare-deps configure \
+.PHONY: all run test exercises exercise-tree stubs stub-sums docs bench compare deps compare-deps configure \
   build clean format release
 
 all: build
@@ -103,11 +103,10 @@ EX_FILTER := $(if $(EX),--gtest_filter=Exercise$(subst .,_,$(EX))_*,)
 EX_SRCS := $(sort $(wildcard tests/exercises/$(if $(EX_NN),$(EX_NN),[0-9][0-9])-*.cpp))
 EX_NNS := $(foreach f,$(EX_SRCS),$(shell basename $(f) | cut -c1-2))
 
-exercises: deps
-ifneq ($(HINT),)
-	@sh tests/exercises/hint.sh $(HINT) $(EX_DIR)/hints
-else
-	@test -n "$(EX_NNS)" || { echo "no lesson $(EX_LESSON): lessons are 1 to 8"; exit 0; }
+# The exercise tree configured (the first step of make exercises; make test's exercise tree,
+# tests/exercises/student_config.cmake, builds it whole before its runs). EX_CMAKE_ARGS: more
+# options for its CMake.
+exercise-tree: deps
 	@mkdir -p $(EX_DIR)
 	@if [ ! -f $(EX_DIR)/build.ninja ] || [ Makefile -nt $(EX_DIR)/CMakeCache.txt ] \
 	     || ! grep -qx 'SOA_EXERCISES_DIR:PATH=$(EX_SRC_DIR)' $(EX_DIR)/CMakeCache.txt; then \
@@ -119,10 +118,16 @@ else
 	    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DSOA_SANITIZE_STUDENT=$$san \
 	    "-DSOA_GROUPS=CORE;DENSE;ID;FD;MINV" \
 	    -DSOA_CHECK_STUBS=OFF -DSOA_WATCH_CALLS=ON \
-	    -DSOA_EXERCISES_DIR=$(EX_SRC_DIR) \
+	    -DSOA_EXERCISES_DIR=$(EX_SRC_DIR) $(EX_CMAKE_ARGS) \
 	    -DSOA_OUTPUT_DIR=$(CURDIR)/build >$(EX_DIR).cmake.log \
 	    || { cat $(EX_DIR).cmake.log; exit 1; }; \
 	fi
+
+exercises: $(if $(HINT),deps,exercise-tree)
+ifneq ($(HINT),)
+	@sh tests/exercises/hint.sh $(HINT) $(EX_DIR)/hints
+else
+	@test -n "$(EX_NNS)" || { echo "no lesson $(EX_LESSON): lessons are 1 to 8"; exit 0; }
 	@[ -f $(EX_DIR)/lib/libsoa.a ] \
 	  || echo "Building the library and the exercise tests in $(EX_DIR), lesson by lesson (the first time takes a few minutes)"
 	@for nn in $(EX_NNS); do \

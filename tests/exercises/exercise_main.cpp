@@ -336,8 +336,11 @@ std::string stopped_message(const std::string& err, const std::string& log) {
     // The student's code: its functions (namespace soa::exNN) in a lesson's folder NN-topic/
     // (exercises/, or the solutions when the checker itself is tested). The checker's: the
     // tests (ExerciseL_K_*::TestBody) and soa::test, in tests/exercises/ and tests/support/.
+    // The runner's own frames (this file: the signal handler) are neither's.
     const Frame f = parse_frame(line);
-    if (!f.found() || student.found()) continue;
+    if (!f.found() || student.found() || f.function == "on_fatal_signal" ||
+        f.where.find("/exercise_main.cpp:") != std::string::npos)
+      continue;
     static const std::regex student_file(R"(/[0-9][0-9]-[A-Za-z0-9-]+/[^/ ]+\.[ch]pp:[0-9])");
     static const std::regex checker_file(R"(/tests/(exercises|support)/[^/ ]+\.[ch]pp:[0-9])");
     static const std::regex student_function("^soa::ex[0-9]+::");

@@ -12,11 +12,12 @@
 # The lines between the first line and "*/" are CMake code (soa_plant(), soa_feedback_test(),
 # comments). <text> is an expression of solutions/NN-topic/solutions.cpp (found exactly once;
 # no semicolons) and the wrong expression that replaces it; TYPE names the type both convert
-# to when their types differ (Eigen expressions). The build compiles one copy of the
+# to when their types differ (Eigen expressions). Configuring writes one copy of the
 # solutions with every mistake in place, each switched on at run time by SOA_PLANT=<id>
-# (tests/support/planted.hpp) — the copy exNN-solutions links, off unless SOA_PLANT says —
-# and ctest runs the lesson's exercise tests on it once per mistake: `exercises.NN.planted.<id>` passes when the report of <exercise> matches
-# <regex> (the mistake named, e.g. "likely mistake \(transpose\)").
+# (tests/support/planted.hpp), off unless SOA_PLANT says. make test's exercise tree compiles
+# it as a student's code (exercises.student-config), and ctest runs the lesson's checker on
+# it once per mistake: `exercises.NN.planted.<id>` passes when the report of <exercise>
+# matches <regex> (the mistake named, e.g. "likely mistake \(transpose\)").
 #
 # Options, after EXPECT:
 #   REJECT <regex>  the test fails when the report matches it (FAIL_REGULAR_EXPRESSION): a
@@ -64,10 +65,10 @@ function(soa_feedback_test exercise id regex)
   set(name exercises.${nn}.feedback.${exercise}.${id})
   add_test(NAME ${name}
            COMMAND sh ${PROJECT_SOURCE_DIR}/tests/exercises/feedback_check.sh
-                   $<TARGET_FILE:ex${nn}-solutions> ${PROJECT_SOURCE_DIR}
+                   ${SOA_EXERCISE_WORK}/tests/ex${nn}-exercises ${PROJECT_SOURCE_DIR}
                    ${CMAKE_CURRENT_BINARY_DIR}/planted/feedback/${exercise}-${id}
                    ${exercise} ${exercise}/${id} Exercise${nn_ex}_${k_ex}_* "${regex}")
-  set_tests_properties(${name} PROPERTIES LABELS exercises)
+  set_tests_properties(${name} PROPERTIES LABELS exercises FIXTURES_REQUIRED exercise_tree)
 endfunction()
 
 # soa_plant_blocks(<checker> <out>): the CMake code of the checker's blocks of planted
@@ -98,8 +99,9 @@ function(soa_plant_blocks checker out)
   set(${out} "${code}" PARENT_SCOPE)
 endfunction()
 
-# soa_planted_solutions(<nn> <NN-topic> <checker>): the planted build and its tests, from the
-# blocks of planted mistakes of the checker tests/exercises/NN-topic.cpp.
+# soa_planted_solutions(<nn> <NN-topic> <checker>): the planted copy of the lesson's solutions
+# and its tests, from the blocks of planted mistakes of the checker tests/exercises/NN-topic.cpp
+# (a lesson without any: the copy alone).
 function(soa_planted_solutions nn dir checker)
   set(solution ${PROJECT_SOURCE_DIR}/solutions/${dir}/solutions.cpp)
   file(READ ${solution} _soa_src)
@@ -115,7 +117,7 @@ function(soa_planted_solutions nn dir checker)
   file(WRITE ${out}.new "#include \"planted.hpp\"\n#line 1 \"${solution}\"\n${_soa_src}")
   file(COPY_FILE ${out}.new ${out} ONLY_IF_DIFFERENT)
   # The planted copy as a student's folder (make exercises EXERCISES=<...>/planted, the test of
-  # the exercise configuration, tests/exercises/student_config.sh): its header beside it, and
+  # the exercise configuration, tests/exercises/student_config.cmake): its header beside it, and
   # its mistakes listed one a line as <id> TAB <expected report regex>.
   file(COPY_FILE ${PROJECT_SOURCE_DIR}/tests/support/planted.hpp
        ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/planted.hpp ONLY_IF_DIFFERENT)
@@ -124,23 +126,18 @@ function(soa_planted_solutions nn dir checker)
     string(APPEND listing "${full}\t${_soa_expect_${full}}\n")
   endforeach()
   file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/planted/${dir}/plants.tsv "${listing}")
-  add_library(solutions_${nn}_planted STATIC ${out})
-  target_include_directories(solutions_${nn}_planted
-    PRIVATE ${PROJECT_SOURCE_DIR}/tests/support ${PROJECT_SOURCE_DIR}/exercises/${dir}
-            ${PROJECT_SOURCE_DIR}/exercises ${PROJECT_SOURCE_DIR}/solutions/${dir})
-  target_link_libraries(solutions_${nn}_planted PUBLIC soa)
-  soa_check_target(solutions_${nn}_planted student)
-  # The lesson's solution tests link this copy (with SOA_PLANT unset it is the solutions,
-  # as written): one compile of the solutions serves both, and solutions_NN itself is built
-  # only on request.
-  set_target_properties(solutions_${nn} PROPERTIES EXCLUDE_FROM_ALL TRUE)
+  # The lesson's tests run its checker as make test's exercise tree built it against this copy
+  # (exercises.student-config, tests/exercises/student_config.cmake): with SOA_PLANT unset it
+  # is the solutions as written.
+  set(program ${SOA_EXERCISE_WORK}/tests/ex${nn}-exercises)
   foreach(full IN LISTS _soa_plants)
     string(REGEX MATCH "^([0-9]+)\\.([0-9]+)/(.*)$" _ "${full}")
     set(filter "Exercise${CMAKE_MATCH_1}_${CMAKE_MATCH_2}_*")
     set(name exercises.${nn}.planted.${CMAKE_MATCH_1}.${CMAKE_MATCH_2}.${CMAKE_MATCH_3})
-    add_test(NAME ${name} COMMAND ex${nn}-solutions --report --gtest_filter=${filter})
-    set_tests_properties(${name} PROPERTIES LABELS exercises ENVIRONMENT "SOA_PLANT=${full}"
-                                            PASS_REGULAR_EXPRESSION "${_soa_expect_${full}}")
+    add_test(NAME ${name} COMMAND ${program} --report --gtest_filter=${filter})
+    set_tests_properties(${name} PROPERTIES LABELS exercises FIXTURES_REQUIRED exercise_tree
+      ENVIRONMENT "SOA_PLANT=${full};ASAN_OPTIONS=detect_leaks=0"
+      PASS_REGULAR_EXPRESSION "${_soa_expect_${full}}")
     if(NOT "${_soa_reject_${full}}" STREQUAL "")
       set_tests_properties(${name} PROPERTIES FAIL_REGULAR_EXPRESSION "${_soa_reject_${full}}")
     endif()
@@ -148,9 +145,9 @@ function(soa_planted_solutions nn dir checker)
       # A student past the exercise's count of failed runs: the count file, 99, written here.
       set(runs ${CMAKE_CURRENT_BINARY_DIR}/planted/runs/${full})
       file(WRITE ${runs}/${CMAKE_MATCH_1}.${CMAKE_MATCH_2}.failed-runs "99\n")
-      add_test(NAME ${name}.named COMMAND ex${nn}-solutions --report --gtest_filter=${filter})
-      set_tests_properties(${name}.named PROPERTIES LABELS exercises
-        ENVIRONMENT "SOA_PLANT=${full};SOA_EXERCISE_CASES=${runs}"
+      add_test(NAME ${name}.named COMMAND ${program} --report --gtest_filter=${filter})
+      set_tests_properties(${name}.named PROPERTIES LABELS exercises FIXTURES_REQUIRED exercise_tree
+        ENVIRONMENT "SOA_PLANT=${full};SOA_EXERCISE_CASES=${runs};ASAN_OPTIONS=detect_leaks=0"
         PASS_REGULAR_EXPRESSION "${_soa_named_${full}}")
     endif()
   endforeach()

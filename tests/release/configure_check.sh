@@ -2,8 +2,8 @@
 # ctest release.configure: a student release (tests/release/release.sh; ctest's
 # release.make writes it) configures with CMake, with no solutions/ (no build: seconds), and its
 # make test would run the library's tests, the lessons' and, for every lesson, the check
-# that each exercise fails on its stub (exercises.NN.stubs-fail), and nothing that needs the
-# solutions.
+# that each exercise fails on its stub (exercises.NN.stubs-fail, on the checkers that
+# exercises.student-config builds from the stubs alone), and nothing that needs the solutions.
 #   configure_check.sh <release dir> <scratch dir> <CMake generator> <C++ compiler>
 set -eu
 rel=$1
@@ -32,7 +32,13 @@ for f in "$rel"/tests/exercises/[0-9][0-9]-*.cpp; do
   nn=$(basename "$f" | cut -c1-2)
   has "^exercises\.$nn\.stubs-fail\$" "exercises.$nn.stubs-fail"
 done
-answers='^exercises\.([0-9]+\.(solutions|planted|feedback)|student-config|committed-work|watch-probe)'
+# The stubs' checkers are built by make exercises' recipe, on the stubs alone here.
+has '^exercises\.student-config$' "exercises.student-config (the exercise configuration on the stubs)"
+if ! grep -q '"-DPLANTED="' "$build/tests/CTestTestfile.cmake"; then
+  echo "FAIL: the release's exercises.student-config is given planted solutions"
+  fail=1
+fi
+answers='^exercises\.([0-9]+\.(solutions|planted|feedback)|committed-work|watch-probe)'
 if grep -Eq "$answers" "$scratch/tests"; then
   echo "FAIL: the release has tests that need the solutions:"
   grep -E "$answers" "$scratch/tests" | head -5
