@@ -25,9 +25,11 @@ Students build the lesson programs, do the exercises and read the generated cour
 Every identity the course states is checked numerically.'
 edit README.md 's/exercise tests against the solutions$/every exercise fails on its stub/'
 edit README.md '/^`make test` also runs `make exercises` itself/,/(`ctest -R exercises\.probe`)\.$/c\
-`make test` also runs probe "students" of `make exercises` with an endless loop, a flood of\
-output, an uninitialised variable, an index past the end, a crash inside the checker and\
-forbidden inline calls (`ctest -R exercises.probe`).'
+`make test` also runs `make exercises` itself, in a build tree of its own\
+(`exercises.student-config`: the same flags, sanitizers, assertions and call watch), on the\
+stubs (every row "not done"), then probe "students" with an endless loop, a flood of output,\
+an uninitialised variable, an index past the end, a crash inside the checker and forbidden\
+inline calls (`ctest -R exercises.probe`).'
 edit README.md 's/ How to add an exercise: the$//'
 edit README.md '/^notes'"'"' page "Adding an exercise"/d'
 edit README.md '/^| `solutions\/` |/d'
