@@ -43,22 +43,14 @@ cmake --build "$build" -j "$jobs" --target "$first_target" >"$log" 2>&1 \
 echo
 run_entry lesson "$(echo "$first" | cut -d'|' -f2)" "$(echo "$first" | cut -d'|' -f4)"
 
-# The rest in the background: the lessons' programs in one build, then the labs' (ninja
-# orders one build's steps by its own graph, so a single build would compile the labs' units
-# before lesson 2's). A program is ready when ninja's log has its line (ninja appends one as
-# each step ends, with the output's time, after this start), or, for one that was up to date,
-# when the builds have ended.
+# The rest in one background build. A program is ready when ninja's log has its line (ninja
+# appends one as each step ends, with the output's time, after this start), or, for one that
+# was up to date, when the build has ended.
 rest=$(grep -v "^lesson|$(echo "$first" | cut -d'|' -f2)|" "$list" | grep -E '^(lesson|lab)\|')
-lesson_targets=$(echo "$rest" | grep '^lesson|' | cut -d'|' -f3 | tr '\n' ' ')
-lab_targets=$(echo "$rest" | grep '^lab|' | cut -d'|' -f3 | tr '\n' ' ')
+targets=$(echo "$rest" | cut -d'|' -f3 | tr '\n' ' ')
 root=$(cd "$build" && pwd)
 since=$(date +%s%N)
-(
-  for targets in "$lesson_targets" "$lab_targets"; do
-    [ -n "${targets% }" ] || continue
-    cmake --build "$build" -j "$jobs" --target $targets >>"$log" 2>&1 || exit 1
-  done
-) &
+cmake --build "$build" -j "$jobs" --target $targets >>"$log" 2>&1 &
 builder=$!
 
 # linked <path relative to the build>: ninja's log has it, written after the start.
