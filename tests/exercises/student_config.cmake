@@ -24,14 +24,22 @@ find_program(MAKE NAMES make gmake REQUIRED)
 string(REPLACE "," ";" PRISTINE "${PRISTINE}")
 set(failures 0)
 
-# make exercises with EXERCISES=<dir> and the given make arguments; its output in <out>.
-function(make_exercises dir out)
+# make_target(<target> <dir> <out-var> <rc-var> [VAR=value...]): `make <target>` of the source
+# tree on this exercise tree with EXERCISES=<dir>, the environment given; its output and exit.
+function(make_target target dir out rc_var)
   # The outer make's jobserver is not this make's: the build's parallelism is its own -j.
   execute_process(
     COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MFLAGS --unset=MAKELEVEL ${ARGN}
-            ${MAKE} --no-print-directory -C ${SRC} exercises EX_DIR=${WORK} EXERCISES=${dir}
+            ${MAKE} --no-print-directory -C ${SRC} ${target} EX_DIR=${WORK} EXERCISES=${dir}
             EX_CMAKE_ARGS=-DSOA_EXERCISE_PROBES=${PROBES}
     OUTPUT_VARIABLE text ERROR_VARIABLE text RESULT_VARIABLE rc)
+  set(${out} "${text}" PARENT_SCOPE)
+  set(${rc_var} ${rc} PARENT_SCOPE)
+endfunction()
+
+# make exercises with EXERCISES=<dir> and the given environment; its output in <out>.
+function(make_exercises dir out)
+  make_target(exercises ${dir} text rc ${ARGN})
   if(NOT rc EQUAL 0)
     message("make exercises EXERCISES=${dir} exited ${rc}:\n${text}")
     math(EXPR f "${failures} + 1")
@@ -50,11 +58,7 @@ if(jobs EQUAL 0)
   set(jobs 2)
 endif()
 function(build_tree dir)
-  execute_process(
-    COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MFLAGS --unset=MAKELEVEL
-            ${MAKE} --no-print-directory -C ${SRC} exercise-tree EX_DIR=${WORK} EXERCISES=${dir}
-            EX_CMAKE_ARGS=-DSOA_EXERCISE_PROBES=${PROBES}
-    OUTPUT_VARIABLE text ERROR_VARIABLE text RESULT_VARIABLE rc)
+  make_target(exercise-tree ${dir} text rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the exercise tree for ${dir} does not configure:\n${text}")
   endif()
