@@ -87,9 +87,11 @@ fi
 all_lessons=$(cd "$src/exercises" && ls -d [0-9][0-9]-* | tr '\n' ' ')
 
 # The stubs stand in for a lesson a submission lacks: they must be the stubs as shipped.
-(cd "$src" && grep -E ' exercises/[0-9][0-9]-[^/]*/[^/]*\.cpp$' tests/exercises/stubs.sha256 |
-  sha256sum -c --quiet >/dev/null 2>&1) ||
-  die "$src/exercises/*/*.cpp differ from tests/exercises/stubs.sha256: the grader fills a lesson a submission lacks with the stubs; restore them (git checkout exercises/)"
+for l in $lessons; do
+  (cd "$src" && grep -F " exercises/$l/" tests/exercises/stubs.sha256 | grep '\.cpp$' |
+    sha256sum -c --quiet >/dev/null 2>&1) ||
+    die "$src/exercises/$l/*.cpp differ from tests/exercises/stubs.sha256: the grader grades a lesson a submission lacks on its stubs; restore them (git checkout exercises/$l)"
+done
 
 # A fresh output: the earlier run's reports go; its exercise tree stays (compiled once).
 mkdir -p "$work"
@@ -294,10 +296,10 @@ grade_one() {  # <entry> <kind>
       find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' >"$work/diags" 2>/dev/null
       while IFS= read -r d; do set -- "$@" --warnings "$d"; done <"$work/diags"
       rm -f "$work/lesson.tsv"
-      SOA_EXERCISE_CASES=$cases SOA_EXERCISE_HINTS=$work/hints \
+      (cd "$cases" && SOA_EXERCISE_CASES=$cases SOA_EXERCISE_HINTS=$work/hints \
         ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=4096:hard_rss_limit_mb=4096 \
         "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
-        --results "$work/lesson.tsv" "$@" >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr" ||
+        --results "$work/lesson.tsv" "$@") >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr" ||
         echo "  the test program stopped (see $work/logs/$i-ex$nn.stderr)" >>"$feedback"
       touch "$work/lesson.tsv"
       cut -f1,3- "$work/lesson.tsv" >>"$results"  # <id>\t<status>\t<message>
