@@ -49,7 +49,7 @@ jobs=${JOBS:-2}
 
 # One line naming what is wrong, and a non-zero exit.
 die() {
-  echo "make grade: $*" >&2
+  printf 'make grade: %s\n' "$*" >&2
   exit 1
 }
 
@@ -233,7 +233,7 @@ unpack() {  # <archive>
   grep -E '^(\./)?([^/]+/)?exercises/[0-9][0-9]-[A-Za-z0-9-]+/[A-Za-z0-9_][A-Za-z0-9_.-]*\.cpp$' \
     "$work/sub.list" >"$work/sub.take"
   # CMake lists a name it cannot convert (not UTF-8) as an empty line.
-  if grep -q '^$' "$work/sub.list" || grep -E '/exercises/[0-9][0-9]-[^/]*/[^/]*\.cpp$' "$work/sub.list" |
+  if grep -q '^$' "$work/sub.list" || grep -E '(^|/)exercises/[0-9][0-9]-[^/]*/[^/]*\.cpp$' "$work/sub.list" |
     grep -vqE '/[A-Za-z0-9_][A-Za-z0-9_.-]*\.cpp$'; then
     note "an entry whose name is not ASCII letters, digits, '_', '-' and '.' (or not UTF-8) is left out"
   fi
@@ -248,9 +248,10 @@ unpack() {  # <archive>
   take "$work/sub"
 }
 
-# Every exercise of a lesson with one status and message.
+# Every exercise of a lesson with one status and message (through the environment: awk -v
+# would read the message's backslashes as escapes).
 all_as() {  # <lesson> <status> <escaped message>
-  awk -F '\t' -v l="$1" -v st="$2" -v msg="$3" '$1 == l { print $2 "\t" st "\t" msg }' \
+  MSG=$3 awk -F '\t' -v l="$1" -v st="$2" '$1 == l { print $2 "\t" st "\t" ENVIRON["MSG"] }' \
     "$work/exercises.tsv" >>"$results"
 }
 esc() { printf '%s\n' "$1" | tr -d '\000-\010\013-\037\177' | awk -f "$here/escape.awk"; }
@@ -347,7 +348,7 @@ while IFS= read -r base; do
   [ $interrupted = 0 ] || break
   entry=$subs/$base
   case "$base" in
-    .*) echo "grade: $base: a hidden entry, skipped" >&2; continue ;;
+    .*) printf 'grade: %s: a hidden entry, skipped\n' "$base" >&2; continue ;;
   esac
   if [ -L "$entry" ]; then kind="link"; name=$base
   elif [ -d "$entry" ]; then
@@ -360,7 +361,7 @@ while IFS= read -r base; do
       *.tar.gz) kind=archive; name=${base%.tar.gz} ;;
       *.tgz) kind=archive; name=${base%.tgz} ;;
       *.zip) kind=archive; name=${base%.zip} ;;
-      *) echo "grade: $base: not a submission (a folder, .tar.gz, .tgz, .zip or git repository), skipped" >&2; continue ;;
+      *) printf 'grade: %s: not a submission (a folder, .tar.gz, .tgz, .zip or git repository), skipped\n' "$base" >&2; continue ;;
     esac
   fi
   # The student's name as it can be written in every output: valid UTF-8, no control character.
@@ -368,7 +369,7 @@ while IFS= read -r base; do
   name=$(printf '%s' "$raw" | iconv -c -f UTF-8 -t UTF-8 2>/dev/null | tr -d '\000-\037\177/')
   [ -n "$name" ] && [ "$name" != . ] && [ "$name" != .. ] || name=student-$i
   if grep -Fxq -- "$name" "$work/rows/names"; then
-    echo "grade: $base: the student $name already has a submission: skipped" >&2
+    printf 'grade: %s: the student %s already has a submission: skipped\n' "$base" "$name" >&2
     continue
   fi
   now=$(date +%s)
@@ -376,7 +377,7 @@ while IFS= read -r base; do
     left=$(( (now - start) * (m - i + 1) / done_n ))
     left="about $((left / 60)) min $((left % 60)) s left"
   else left="time left not known yet"; fi
-  echo "grade: $i of $m, $name, $left" >&2
+  printf 'grade: %s of %s, %s, %s\n' "$i" "$m" "$name" "$left" >&2
   notes=$work/notes
   results=$work/results.tsv
   feedback=$work/feedback.md
@@ -393,13 +394,13 @@ while IFS= read -r base; do
   iconv -c -f UTF-8 -t UTF-8 <"$results" >"$results.utf8" 2>/dev/null
   notes_esc=$(esc "$(cat "$notes")")
   [ -s "$notes" ] || notes_esc=""
-  awk -v name="$name" -v notes="$notes_esc" -v row="$work/row" -v srow="$work/srow" \
-    -v json="$out/results/$name.json.tmp" -f "$here/student.awk" \
+  NAME=$name NOTES=$notes_esc JSON=$out/results/$name.json.tmp \
+    awk -v row="$work/row" -v srow="$work/srow" -f "$here/student.awk" \
     "$work/weights.tsv" "$work/exercises.tsv" "$results.utf8" ||
     die "the results of $name could not be written"
   mv "$out/results/$name.json.tmp" "$out/results/$name.json"
   {
-    echo "# Exercises of $name"
+    printf '# Exercises of %s\n' "$name"
     echo
     echo "$(sed 's/.*,//' "$work/row") of $max points (gradebook.csv has each exercise's)."
     if [ -s "$notes" ]; then echo; sed 's/^/- /' "$notes"; fi

@@ -4,9 +4,10 @@
 #   exercises.tsv  <lesson folder>\t<id>\t<title>, in the gradebook's order
 #   results.tsv    <id>\t<status>\t<message>, the message escaped as --results writes it
 #                  (\\, \n, \t; valid UTF-8, no other control character)
-# -v name=<student> (no control character) -v notes=<message about the whole submission,
-# escaped the same way> -v row=<file> -v srow=<file> -v json=<file>.
-BEGIN { FS = "\t" }
+# -v row=<file> -v srow=<file>; in the environment (awk -v would read backslashes as escapes)
+# NAME=<student> (no control character), NOTES=<a message about the whole submission, escaped
+# the same way> and JSON=<the results.json file to write>.
+BEGIN { FS = "\t"; name = ENVIRON["NAME"]; notes = ENVIRON["NOTES"]; json = ENVIRON["JSON"] }
 FILENAME == ARGV[1] { points[$1] = $2; next }
 FILENAME == ARGV[2] { order[++n] = $2; title[$2] = $3; next }
 { status[$1] = $2; message[$1] = $3 }
