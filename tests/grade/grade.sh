@@ -153,6 +153,7 @@ stubs() {  # <lesson>
 for l in $all_lessons; do stubs "$l"; done
 
 # The exercise tree, configured for OUT/.work/current, then the library and the checkers.
+built=$(date +%s)
 tree=${TREE:-$work/tree}
 echo "grade: the library and the checkers, compiled once in $tree (the first time takes minutes)" >&2
 if [ -n "${TREE:-}" ]; then
@@ -171,6 +172,7 @@ for l in $lessons; do targets="$targets ex$(echo "$l" | cut -c1-2)-tests"; done
 # shellcheck disable=SC2086
 cmake --build "$tree" -j "$jobs" --target $targets >"$work/logs/checkers.log" 2>&1 ||
   die "the library or a checker does not compile (see $work/logs/checkers.log)"
+built=$(($(date +%s) - built))
 
 # --- one submission ---------------------------------------------------------------------------
 note() { printf '%s\n' "$*" >>"$notes"; }
@@ -423,4 +425,5 @@ if [ $interrupted = 1 ]; then
   echo "grade: stopped after $done_n of $m entries: $out/gradebook.csv has their rows" >&2
   exit 130
 fi
-echo "grade: $done_n students graded in $(( $(date +%s) - start )) s: $out/gradebook.csv, class.md, feedback/, results/" >&2
+took=$(($(date +%s) - start))
+echo "grade: $done_n students graded in $took s ($((took / (done_n > 0 ? done_n : 1))) s a submission, after $built s for the library and the checkers): $out/gradebook.csv, class.md, feedback/, results/" >&2
