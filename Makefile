@@ -47,7 +47,7 @@ endif
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
 .PHONY: all run test exercises exercise-tree stubs stub-sums docs bench compare deps compare-deps configure \
-  build clean format release grade
+  grade build clean format release
 
 all: build
 
