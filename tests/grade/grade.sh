@@ -426,4 +426,4 @@ if [ $interrupted = 1 ]; then
   exit 130
 fi
 took=$(($(date +%s) - start))
-echo "grade: $done_n students graded in $took s ($((took / (done_n > 0 ? done_n : 1))) s a submission, after $built s for the library and the checkers): $out/gradebook.csv, class.md, feedback/, results/" >&2
+echo "grade: $done_n of $m entries graded in $took s ($((took / (done_n > 0 ? done_n : 1))) s a submission, after $built s for the library and the checkers): $out/gradebook.csv, class.md, feedback/, results/" >&2
