@@ -10,6 +10,9 @@
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
 #   make release    OUT=DIR: the student's repository, without the answers (instructors)
+#   make grade      SUBMISSIONS=DIR OUT=DIR [WEIGHTS=FILE] [LESSONS=1,2] UNSAFE=1: a class's
+#                   submissions judged by the checker: gradebook, feedback, Gradescope results,
+#                   class report (instructors; no sandbox yet, hence UNSAFE=1)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), SANITIZE=clang (the same
 # with clang, in build/sanitize-clang: its AddressSanitizer also finds uses after scope that
 # GCC's misses), BUILD_TYPE=Debug (in build/debug), TESTS=regex (make test runs only the ctest
@@ -44,7 +47,7 @@ endif
 COMPARE_PACKAGES := liborocos-kdl-dev libmujoco-dev
 
 .PHONY: all run test exercises exercise-tree stubs stub-sums docs bench compare deps compare-deps configure \
-  build clean format release
+  grade build clean format release
 
 all: build
 
@@ -187,6 +190,14 @@ compare: compare-deps
 # (tests/release/release.sh; the notes' page "Instructors").
 release:
 	@sh tests/release/release.sh "$(CURDIR)" "$(OUT)"
+
+# Every submission in SUBMISSIONS graded by the exercise checker into OUT (tests/grade/grade.sh;
+# the notes' page "Instructors"): the library and the checkers compiled once, in OUT/.work/tree
+# (make exercise-tree's flags; TREE=DIR: an exercise tree already built), then only each
+# submission's code. Student code runs unsandboxed: only with UNSAFE=1.
+grade:
+	@UNSAFE="$(UNSAFE)" LESSONS="$(LESSONS)" TREE="$(TREE)" JOBS="$(JOBS)" \
+	  sh tests/grade/grade.sh "$(CURDIR)" "$(SUBMISSIONS)" "$(OUT)" "$(WEIGHTS)"
 
 format:
 	clang-format -i $$(git ls-files '*.hpp' '*.cpp')

@@ -23,6 +23,13 @@
 //   --warnings FILE     the compiler's diagnostics of the student's code (repeatable): each
 //                       warning is shown under the row of the exercise whose function it is
 //                       in, and that row never says a bare "pass"
+//   --results FILE      with --report, also one line per exercise for a program (make grade,
+//                       tests/grade/grade.sh): "<id>\t<name>\t<status>\t<message>", status one
+//                       of pass, fail, not-done, timed-out, crashed[:SIGNAME], out-of-memory,
+//                       forbidden-call; the message (the row's warnings, failures and notes)
+//                       with backslash, newline and tab written \\, \n and \t, other control
+//                       characters as '?'. Written by this process, the parent of the
+//                       exercises' runs, into FILE.tmp then renamed: no run writes it.
 #include <execinfo.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>
@@ -51,6 +58,8 @@ namespace {
 struct Row {
   bool failed = false;
   bool not_done = false;
+  bool forbidden = false;     ///< calls the library function the exercise reproduces
+  std::string stopped;        ///< how the run stopped, as a --results status, or ""
   std::string first_failure;  ///< the failures' messages, each ending in a newline
   std::string notes;          ///< what the exercise printed, or a note on it
 };
@@ -197,6 +206,49 @@ class Table : public testing::EmptyTestEventListener {
     int lines = 0;
     while (std::getline(text, line) && lines++ < 80) std::printf("      %s\n", line.c_str());
   }
+  // --results: each exercise's status and message, a line each (see the top of this file).
+  bool write_results(const std::string& path,
+                     const std::map<std::string, std::string>& warnings) const {
+    const std::string tmp = path + ".tmp";
+    std::FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) return false;
+    for (const auto& name : order_) {
+      const Row& r = rows_.at(name);
+      const std::string l = label(name);
+      const std::string id = l.substr(0, l.find(' '));
+      const auto w = warnings.find(id);
+      const std::string status = r.forbidden          ? "forbidden-call"
+                                 : !r.stopped.empty() ? r.stopped
+                                 : !r.failed          ? "pass"
+                                 : r.not_done         ? "not-done"
+                                 : r.first_failure.find("std::bad_alloc") != std::string::npos
+                                     ? "out-of-memory"
+                                     : "fail";
+      const std::string message = (w == warnings.end() ? "" : w->second) +
+                                  (r.failed && !r.not_done ? r.first_failure : "") + r.notes;
+      const std::string line = id + "\t" + l.substr(std::min(l.size(), id.size() + 1)) + "\t" +
+                               status + "\t" + escaped(message) + "\n";
+      std::fwrite(line.data(), 1, line.size(), f);
+    }
+    const bool ok = std::fclose(f) == 0;
+    return ok && std::rename(tmp.c_str(), path.c_str()) == 0;
+  }
+  static std::string escaped(const std::string& text) {
+    std::string s;
+    for (const char c : text) {
+      if (c == '\\')
+        s += "\\\\";
+      else if (c == '\n')
+        s += "\\n";
+      else if (c == '\t')
+        s += "\\t";
+      else if ((unsigned char)c < 0x20 || c == 0x7f)
+        s += '?';
+      else
+        s += c;
+    }
+    return s;
+  }
   int passed() const {
     int n = 0;
     for (const auto& [name, r] : rows_) n += !r.failed;
@@ -204,18 +256,20 @@ class Table : public testing::EmptyTestEventListener {
   }
   int total() const { return int(rows_.size()); }
 
-  // One row as text, from a child process to its parent: "<failed> <not done>\n<message>".
+  // One row as text, from a child process to its parent:
+  // "<failed> <not done> <forbidden>\n<message>".
   std::string serialize(const std::string& suite) const {
     const auto it = rows_.find(suite);
     if (it == rows_.end()) return "";
     return std::to_string(int(it->second.failed)) + " " + std::to_string(int(it->second.not_done)) +
-           "\n" + it->second.first_failure;
+           " " + std::to_string(int(it->second.forbidden)) + "\n" + it->second.first_failure;
   }
   // A forbidden call fails the exercise whatever its numbers, and is said first.
   void forbid(const std::string& suite, const std::string& message) {
     Row& r = rows_[suite];
     r.failed = true;
     r.not_done = false;
+    r.forbidden = true;
     r.first_failure = message + r.first_failure;
   }
   void note(const std::string& suite, const std::string& text) { rows_[suite].notes += text; }
@@ -456,6 +510,25 @@ std::string keep(const char* dir, const std::string& name, const std::string& te
   return path;
 }
 
+// How a run that stopped stopped, as a --results status: out of memory (an allocation the
+// sanitizer or the C++ runtime refused, or a kill the time limit did not send: the kernel's
+// out-of-memory killer), else crashed, with the signal when there is one (the runner's
+// handler exits with 128 + the signal; a sanitizer's report exits with 1).
+std::string stopped_status(int status, const std::string& report) {
+  for (const char* oom :
+       {"out of memory", "out-of-memory", "allocation-size-too-big",
+        "exceeds maximum supported size", "rss limit exhausted", "std::bad_alloc"})
+    if (report.find(oom) != std::string::npos) return "out-of-memory";
+  int sig = 0;
+  if (WIFSIGNALED(status))
+    sig = WTERMSIG(status);
+  else if (WIFEXITED(status) && WEXITSTATUS(status) > 128)
+    sig = WEXITSTATUS(status) - 128;
+  if (sig == SIGKILL) return "out-of-memory";
+  const char* abbrev = sig > 0 ? sigabbrev_np(sig) : nullptr;
+  return abbrev ? std::string("crashed:SIG") + abbrev : "crashed";
+}
+
 // --report: every exercise (test suite) in a child process of its own, under Limits.
 void run_isolated(Table& table, const Limits& limits) {
   const std::string filter = GTEST_FLAG_GET(filter);
@@ -505,21 +578,25 @@ void run_isolated(Table& table, const Limits& limits) {
     if (in_time && WIFEXITED(status) && WEXITSTATUS(status) == 0 && !row.empty()) {
       r.failed = row[0] == '1';
       r.not_done = row.size() > 2 && row[2] == '1';
+      r.forbidden = row.size() > 4 && row[4] == '1';
       r.first_failure = row.substr(std::min(row.size(), row.find('\n') + 1));
     } else {
       r.failed = true;
-      if (!in_time)
+      if (!in_time) {
+        r.stopped = "timed-out";
         r.first_failure = "stopped after " + std::to_string(limits.seconds) +
                           " s: an endless loop? (a loop whose condition never changes, or an "
                           "index that never reaches its end)\n";
-      else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ)
+      } else if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) {
+        r.stopped = "crashed:SIGXFSZ";
         r.first_failure = "stopped: your code printed more than " +
                           std::to_string(limits.output_bytes >> 20) +
                           " MB (an endless loop that prints?)\n";
-      else {
+      } else {
         const std::string report_text = read_all(err);
         r.first_failure =
             stopped_message(report_text, keep(cases, name + "-stopped.log", report_text));
+        r.stopped = stopped_status(status, report_text);
       }
     }
     r.notes = printed_note(text, output_log, limits.shown_lines);
@@ -535,6 +612,7 @@ void run_isolated(Table& table, const Limits& limits) {
 int main(int argc, char** argv) {
   bool report = false, expect_all_fail = false;
   const char* header = nullptr;
+  const char* results = nullptr;
   std::vector<std::string> warning_files;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
@@ -544,6 +622,8 @@ int main(int argc, char** argv) {
       header = argv[++i];
     else if (std::strcmp(argv[i], "--warnings") == 0 && i + 1 < argc)
       warning_files.push_back(argv[++i]);
+    else if (std::strcmp(argv[i], "--results") == 0 && i + 1 < argc)
+      results = argv[++i];
     else if (std::strcmp(argv[i], "--expect-all-fail") == 0)
       expect_all_fail = true;
     else
@@ -569,8 +649,13 @@ int main(int argc, char** argv) {
   else
     rc = RUN_ALL_TESTS();
   const Statements statements = read_statements(header);
-  table->print(statements, read_warnings(warning_files, statements));
+  const auto warnings = read_warnings(warning_files, statements);
+  table->print(statements, warnings);
   std::printf("  %d of %d exercises pass\n", table->passed(), table->total());
+  if (results && report && !table->write_results(results, warnings)) {
+    std::fprintf(stderr, "%s: could not be written\n", results);
+    return 1;
+  }
   if (report) return 0;
   if (expect_all_fail) return table->passed() == 0 && table->total() > 0 ? 0 : 1;
   return rc;

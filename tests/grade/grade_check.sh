@@ -1,0 +1,168 @@
+#!/bin/sh
+# ctest grade.class: make grade's script (tests/grade/grade.sh) on a small class made here from
+# lesson 1's solutions and stubs, graded on lesson 1 only (LESSONS=1) in an exercise tree that
+# is already built (make test's, tests/student-config: TREE=), so that only the students' code
+# is compiled:
+#   alice        a folder, the solutions; and a symbolic link helper.cpp -> /etc/passwd
+#                (left out, or she would not compile)
+#   bob.tar.gz   half done: 1.5 to 1.9 still throw NotDone; and a file whose name is not
+#                UTF-8 (left out)
+#   carol        a git repository, the solutions with the planted mistake 1.2/transpose of the
+#                checker (tests/exercises/01-spatial-notation.cpp): class.md must count it
+#   dave         a folder whose code does not compile
+#   erin         a folder with no exercises/
+#   mallory.zip  a zip with an entry ../../x: refused, and the grader goes on
+# Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
+# the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
+# written outside OUT, and the one-line refusals (no UNSAFE=1, a bad weights line).
+#   grade_check.sh <source dir> <exercise tree> <scratch dir>
+set -u
+src=$1
+tree=$2
+scratch=$3
+here=$(cd "$(dirname "$0")" && pwd)
+fail=0
+check() {  # <what> <command...>: the command must succeed
+  what=$1
+  shift
+  if "$@"; then echo "ok: $what"; else echo "FAIL: $what"; fail=1; fi
+}
+
+rm -rf "$scratch"
+mkdir -p "$scratch/subs" "$scratch/make"
+subs=$scratch/subs
+out=$scratch/out
+lesson=$(cd "$src/exercises" && ls -d 01-*)
+solution=$(ls "$src/solutions/$lesson/"*.cpp | head -1)
+stub=$src/exercises/$lesson/exercises.cpp
+[ -f "$solution" ] && [ -f "$stub" ] && [ -f "$tree/CMakeCache.txt" ] ||
+  { echo "FAIL: needs $src/solutions/$lesson, its stub and the exercise tree $tree"; exit 1; }
+# The grader grades a lesson a submission lacks on its stubs: they must be as shipped.
+if ! (cd "$src" && grep -F " exercises/$lesson/exercises.cpp" tests/exercises/stubs.sha256 |
+  sha256sum -c --quiet >/dev/null 2>&1); then
+  echo "skipped: exercises/$lesson/exercises.cpp is not the stub as shipped (your work?)"
+  exit 0
+fi
+
+# alice
+mkdir -p "$subs/alice/exercises/$lesson"
+cp "$solution" "$subs/alice/exercises/$lesson/exercises.cpp"
+ln -s /etc/passwd "$subs/alice/exercises/$lesson/helper.cpp"
+
+# bob: the second half of the lesson not done (a throw first in each of those functions).
+mkdir -p "$scratch/make/bob/exercises/$lesson"
+half=$(sed -n 's/.*NotDone("\(1\.[5-9] [a-z_0-9]*\)").*/\1/p' "$stub")
+[ "$(printf '%s\n' "$half" | wc -l)" = 5 ] || { echo "FAIL: the stub of 1.5 to 1.9 changed"; exit 1; }
+awk -v half="$half" '
+  BEGIN { n = split(half, f, "\n") }
+  { print }
+  /#include "exercises.hpp"/ { print "#include \"not_done.hpp\"" }
+  /^[A-Za-z].*\) \{$/ {
+    for (i = 1; i <= n; i++) if (index($0, " " substr(f[i], 5) "(")) print "  throw exercise::NotDone(\"" f[i] "\");" }
+' "$solution" >"$scratch/make/bob/exercises/$lesson/exercises.cpp"
+printf 'int not_taken;\n' >"$scratch/make/bob/exercises/$lesson/$(printf 'caf\351').cpp"
+tar -czf "$subs/bob.tar.gz" -C "$scratch/make/bob" exercises
+
+# carol: the planted mistake 1.2/transpose, its FIND text replaced by its WRONG text.
+plant() {  # <FIND|WRONG>
+  awk -v key="$1" '/^soa_plant\(1\.2 transpose$/ { on = 1; next }
+    on && index($0, key " [=[") { s = substr($0, index($0, "[=[") + 3); sub(/\]=\].*/, "", s); print s; exit }' \
+    "$src/tests/exercises/$lesson.cpp"
+}
+find_text=$(plant FIND)
+wrong_text=$(plant WRONG)
+[ -n "$find_text" ] && [ -n "$wrong_text" ] ||
+  { echo "FAIL: no planted mistake 1.2 transpose in tests/exercises/$lesson.cpp"; exit 1; }
+mkdir -p "$subs/carol/exercises/$lesson"
+awk -v find="$find_text" -v wrong="$wrong_text" '{
+    at = index($0, find)
+    if (at) { $0 = substr($0, 1, at - 1) wrong substr($0, at + length(find)); n++ }
+    print }
+  END { if (n != 1) exit 1 }' "$solution" >"$subs/carol/exercises/$lesson/exercises.cpp" ||
+  { echo "FAIL: the FIND text of 1.2 transpose is not once in $solution"; exit 1; }
+git -C "$subs/carol" init -q &&
+  git -C "$subs/carol" add exercises &&
+  git -C "$subs/carol" -c user.name=carol -c user.email=carol@example.org commit -q -m work ||
+  { echo "FAIL: could not make carol's git repository"; exit 1; }
+
+# dave, erin
+mkdir -p "$subs/dave/exercises/$lesson" "$subs/erin"
+{ cat "$stub"; echo "int broken = ;"; } >"$subs/dave/exercises/$lesson/exercises.cpp"
+echo "my notes" >"$subs/erin/README.txt"
+
+# mallory: a zip whose one entry is ../../x (stored, empty: every field is known).
+{
+  printf 'PK\003\004\024\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\007\000\000\000../../x'
+  printf 'PK\001\002\024\000\024\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\007\000'
+  printf '\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000\000../../x'
+  printf 'PK\005\006\000\000\000\000\001\000\001\000\065\000\000\000\045\000\000\000\000\000'
+} >"$subs/mallory.zip"
+
+printf '# 1.2 counts three\n1.2 3\n' >"$scratch/weights"
+touch "$scratch/stamp"
+sleep 1
+
+# The refusals: one line, non-zero, nothing written.
+msg=$(sh "$here/grade.sh" "$src" "$subs" "$scratch/refused" 2>&1)
+rc=$?
+check "without UNSAFE=1: one line naming the sandbox, exit non-zero" \
+  test $rc != 0 -a "$(printf '%s\n' "$msg" | wc -l)" = 1 -a ! -e "$scratch/refused/gradebook.csv"
+case "$msg" in *bubblewrap*UNSAFE=1*) ;; *) echo "FAIL: the refusal says: $msg"; fail=1 ;; esac
+printf '1.2 three\n' >"$scratch/bad-weights"
+msg=$(UNSAFE=1 LESSONS=1 TREE=$tree sh "$here/grade.sh" "$src" "$subs" "$scratch/refused" \
+  "$scratch/bad-weights" 2>&1)
+rc=$?
+check "a bad weights line: one line naming the file and line, exit non-zero" \
+  test $rc != 0 -a "$(printf '%s\n' "$msg" | wc -l)" = 1
+case "$msg" in *"$scratch/bad-weights:1:"*) ;; *) echo "FAIL: the bad weights say: $msg"; fail=1 ;; esac
+
+# The class.
+UNSAFE=1 LESSONS=1 TREE=$tree JOBS=${JOBS:-2} sh "$here/grade.sh" "$src" "$subs" "$out" \
+  "$scratch/weights" 2>"$scratch/grade.err"
+rc=$?
+cat "$scratch/grade.err"
+check "the grader finishes (exit 0)" test $rc = 0
+
+row() { grep "^$1," "$out/gradebook.csv"; }
+expect_row() {  # <student> <row>
+  got=$(row "$1")
+  if [ "$got" = "$2" ]; then echo "ok: $1's row"; else
+    echo "FAIL: $1's row is \"$got\", not \"$2\""; fail=1; fi
+}
+check "the gradebook's header" test "$(head -1 "$out/gradebook.csv")" = \
+  "student,1.1,1.2,1.3,1.4,1.5,1.6,1.7,1.8,1.9,total"
+expect_row alice "alice,1,3,1,1,1,1,1,1,1,11"
+expect_row bob "bob,1,3,1,1,0,0,0,0,0,6"
+expect_row carol "carol,1,0,1,1,1,1,1,1,1,8"
+expect_row dave "dave,0,0,0,0,0,0,0,0,0,0"
+expect_row erin "erin,0,0,0,0,0,0,0,0,0,0"
+expect_row mallory "mallory,0,0,0,0,0,0,0,0,0,0"
+check "six rows" test "$(wc -l <"$out/gradebook.csv")" = 7
+srow() { grep "^$1," "$out/statuses.csv"; }
+check "bob: 1.5 to 1.9 not done" \
+  test "$(srow bob)" = "bob,pass,pass,pass,pass,not done,not done,not done,not done,not done"
+check "carol: 1.2 FAIL" test "$(srow carol | cut -d, -f3)" = FAIL
+check "dave: does not compile" test "$(srow dave | cut -d, -f2)" = "does not compile"
+check "class.md counts carol's transpose: 1.2, 1 of 6" \
+  grep -q '^- 1\.2 ([^)]*): 1 of 6 — likely mistake (transpose)' "$out/class.md"
+check "class.md: 1.1 passes for 3 of 6" grep -q '^| 1\.1 [^|]* | 3 | 0 | 2 | 1 | ' "$out/class.md"
+check "class.md: nobody left out an exercise" grep -q '^None: every exercise was attempted' "$out/class.md"
+check "erin's feedback: no exercises/ folder" grep -q 'no exercises/ folder' "$out/feedback/erin.md"
+check "mallory's feedback: refused, naming the entry" grep -q 'refused: .*\.\./\.\./x' "$out/feedback/mallory.md"
+check "alice's feedback: the link left out" grep -q 'helper.cpp: not a regular file' "$out/feedback/alice.md"
+check "bob's feedback: the non-UTF-8 file name left out" grep -q 'is left out' "$out/feedback/bob.md"
+check "dave's feedback: the compiler's error" grep -q 'error' "$out/feedback/dave.md"
+check "carol's feedback: the table of make exercises naming the mistake" \
+  grep -q 'likely mistake (transpose)' "$out/feedback/carol.md"
+n_json=$(ls "$out/results/"*.json | wc -l)
+check "a results.json per student" test "$n_json" = 6
+check "every results.json in Gradescope's format" \
+  cmake "-DFILES=$(ls "$out/results/"*.json | tr '\n' ';')" -P "$here/gradescope_check.cmake"
+check "alice's results.json: score 11" grep -q '"score": 11,' "$out/results/alice.json"
+check "nothing written outside OUT: no ../../x" \
+  test ! -e "$out/x" -a ! -e "$scratch/x" -a ! -e "$out/.work/x" -a ! -e "$(dirname "$scratch")/x"
+check "nothing written into the submissions" test -z "$(find "$subs" -newer "$scratch/stamp" ! -type l)"
+check "no partial file left (*.tmp)" test -z "$(find "$out" -name '*.tmp' ! -path '*/.work/*')"
+check "the progress lines: N of M, the student, the time left" \
+  grep -q '^grade: 3 of 6, carol, about [0-9]* min [0-9]* s left$' "$scratch/grade.err"
+exit $fail
