@@ -145,16 +145,18 @@
 #else
 #define SOA_EXTERN_SIM(S) SOA_TEMPLATES_SIM(extern, S)
 #endif
-#define SOA_EXTERN_TEMPLATES(S) \
-  SOA_EXTERN_CORE(S)            \
-  SOA_EXTERN_DENSE(S)           \
-  SOA_EXTERN_ID(S)              \
-  SOA_EXTERN_FD(S)              \
-  SOA_EXTERN_MINV(S)            \
-  SOA_EXTERN_SIM(S)
+#define SOA_EXTERN_NUMERICS(S) \
+  SOA_EXTERN_CORE(S)           \
+  SOA_EXTERN_DENSE(S)          \
+  SOA_EXTERN_ID(S)             \
+  SOA_EXTERN_FD(S)             \
+  SOA_EXTERN_MINV(S)
+// The simulation group is compiled in double only (lib/CMakeLists.txt): a program simulating in
+// float or long double compiles those templates itself.
 namespace soa {
-SOA_EXTERN_TEMPLATES(float)
-SOA_EXTERN_TEMPLATES(double)
-SOA_EXTERN_TEMPLATES(long double)
+SOA_EXTERN_NUMERICS(float)
+SOA_EXTERN_NUMERICS(double)
+SOA_EXTERN_SIM(double)
+SOA_EXTERN_NUMERICS(long double)
 }  // namespace soa
 #endif
