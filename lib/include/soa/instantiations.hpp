@@ -99,7 +99,9 @@
 #define SOA_TEMPLATES_SIM(PREFIX, S)                                                             \
   PREFIX template void retract<S>(const ModelT<S>&, const VecX<S>&, const VecX<S>&, VecX<S>&);   \
   PREFIX template class ChainSystemT<S>;                                                         \
-  PREFIX template class StepperT<S>;
+  PREFIX template class StepperT<S>;                                                             \
+  PREFIX template SimulationSummary detail::simulate_observed<S>(                                \
+      ChainSystemT<S>&, StateT<S>&, const SimulationOptionsT<S>&, const SimulationObserverT<S>&);
 #define SOA_TEMPLATES(PREFIX, S) \
   SOA_TEMPLATES_CORE(PREFIX, S)  \
   SOA_TEMPLATES_DENSE(PREFIX, S) \

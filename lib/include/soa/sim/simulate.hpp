@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -171,6 +172,20 @@ S starting_step(StepperT<S>& stepper, int nv, S t, const StateT<S>& x, S tol, in
   return h > S(0) && h < std::numeric_limits<S>::infinity() ? h : h0;
 }
 
+/// What simulate() calls with the time and the state at t = 0 and after every accepted step.
+template <class S>
+using SimulationObserverT = std::function<void(S, const StateT<S>&)>;
+
+namespace detail {
+/// simulate() with its observer behind one type, so that the loop is compiled once per
+/// precision, in the library (soa/instantiations.hpp), and not in every program that
+/// simulates with an observer of its own.
+template <class S>
+SimulationSummary simulate_observed(ChainSystemT<S>& sys, StateT<S>& x,
+                                    const SimulationOptionsT<S>& opt,
+                                    const SimulationObserverT<S>& observe);
+}  // namespace detail
+
 /// Integrates \p sys from the state \p x (overwritten by the final state) over
 /// [0, opt.t_end]. \p observe(t, x) is called at t = 0 and after every accepted step. A run
 /// that blows up stops with soa::Error giving the time, the step, and the estimated
@@ -178,6 +193,13 @@ S starting_step(StepperT<S>& stepper, int nv, S t, const StateT<S>& x, S tol, in
 template <class S, class Observer>
 SimulationSummary simulate(ChainSystemT<S>& sys, StateT<S>& x, const SimulationOptionsT<S>& opt,
                            Observer&& observe) {
+  return detail::simulate_observed<S>(sys, x, opt, SimulationObserverT<S>(std::ref(observe)));
+}
+
+template <class S>
+SimulationSummary detail::simulate_observed(ChainSystemT<S>& sys, StateT<S>& x,
+                                            const SimulationOptionsT<S>& opt,
+                                            const SimulationObserverT<S>& observe) {
   const bool adaptive = is_adaptive(opt.method);
   if (adaptive && !(opt.tol > S(0)))
     throw Error(std::string("simulate: ") + integrator_name(opt.method) +
