@@ -10,9 +10,9 @@
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
 #   make release    OUT=DIR: the student's repository, without the answers (instructors)
-#   make grade      SUBMISSIONS=DIR OUT=DIR [WEIGHTS=FILE] [LESSONS=1,2] UNSAFE=1: a class's
-#                   submissions judged by the checker: gradebook, feedback, Gradescope results,
-#                   class report (instructors; no sandbox yet, hence UNSAFE=1)
+#   make grade      SUBMISSIONS=DIR OUT=DIR [WEIGHTS=FILE] [LESSONS=1,2]: a class's
+#                   submissions judged by the checker, in a sandbox: gradebook, feedback,
+#                   Gradescope results, class report (instructors)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), SANITIZE=clang (the same
 # with clang, in build/sanitize-clang: its AddressSanitizer also finds uses after scope that
 # GCC's misses), BUILD_TYPE=Debug (in build/debug), TESTS=regex (make test runs only the ctest
@@ -39,7 +39,7 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := cmake g++ ninja-build libeigen3-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev doxygen graphviz gnuplot-nox libjs-mathjax \
   libjs-three chromium pkgconf liburdfdom-dev libtinyxml-dev libsundials-dev libsleef-dev \
-  ccache
+  ccache bubblewrap
 ifeq ($(SANITIZE),clang)
   PACKAGES += clang
 endif
@@ -194,7 +194,7 @@ release:
 # Every submission in SUBMISSIONS graded by the exercise checker into OUT (tests/grade/grade.sh;
 # the notes' page "Instructors"): the library and the checkers compiled once, in OUT/.work/tree
 # (make exercise-tree's flags; TREE=DIR: an exercise tree already built), then only each
-# submission's code. Student code runs unsandboxed: only with UNSAFE=1.
+# submission's code. Student code runs in a bubblewrap sandbox; UNSAFE=1 runs it without.
 grade:
 	@UNSAFE="$(UNSAFE)" LESSONS="$(LESSONS)" TREE="$(TREE)" JOBS="$(JOBS)" \
 	  sh tests/grade/grade.sh "$(CURDIR)" "$(SUBMISSIONS)" "$(OUT)" "$(WEIGHTS)"

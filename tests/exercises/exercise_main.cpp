@@ -33,6 +33,7 @@
 #include <execinfo.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -469,19 +470,26 @@ struct Limits {
   int shown_lines = 12;                     ///< printed lines shown under its row
 };
 
-// Waits for the child \p pid at most \p seconds; kills it after that. False if killed.
+// Waits for the child \p pid, the leader of its own process group, at most \p seconds; kills
+// it after that. Then every process left in its group (what the exercise's code started and
+// left running, a fork bomb's) is killed, so that the next exercise runs alone. False if the
+// child was killed.
 bool wait_for(pid_t pid, int seconds, int& status) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  bool in_time = true;
   while (true) {
     const pid_t r = waitpid(pid, &status, WNOHANG);
-    if (r == pid || (r < 0 && errno != EINTR)) return true;
+    if (r == pid || (r < 0 && errno != EINTR)) break;
     if (std::chrono::steady_clock::now() >= end) {
-      kill(pid, SIGKILL);
+      kill(-pid, SIGKILL);
       waitpid(pid, &status, 0);
-      return false;
+      in_time = false;
+      break;
     }
     usleep(2000);
   }
+  kill(-pid, SIGKILL);
+  return in_time;
 }
 
 // What the exercise printed, under its row: the first lines, and the rest in a file.
@@ -551,6 +559,10 @@ void run_isolated(Table& table, const Limits& limits) {
     std::fflush(stdout);
     const pid_t pid = fork();
     if (pid == 0) {
+      // A process group of its own (wait_for() ends it whole), and killed if the runner dies
+      // (Ctrl-C reaches the runner's group, not this one).
+      setpgid(0, 0);
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
       dup2(fileno(err), 2);
       dup2(fileno(printed), 1);
       setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -569,6 +581,19 @@ void run_isolated(Table& table, const Limits& limits) {
       std::fflush(out);
       _exit(0);
     }
+    if (pid < 0) {
+      Row r;
+      r.failed = true;
+      r.stopped = "crashed";
+      r.first_failure = std::string("not run: no process could be started for it (") +
+                        std::strerror(errno) + "): too many processes still running?\n";
+      std::fclose(err);
+      std::fclose(out);
+      std::fclose(printed);
+      table.set(suite, r);
+      continue;
+    }
+    setpgid(pid, pid);
     int status = 0;
     const bool in_time = wait_for(pid, limits.seconds, status);
     const std::string row = read_all(out);

@@ -32,8 +32,16 @@
 # and class.md are written again after each submission; Ctrl-C stops at the end of the
 # submission being graded (which is left out) and keeps every completed row.
 #
-# Not yet: the sandbox. Student code runs with the rights of whoever runs this, so it runs
-# only with UNSAFE=1.
+# Student code runs in a sandbox (bubblewrap, Debian bubblewrap; in_sandbox below): no
+# network, / read-only, a private /tmp and one writable scratch folder per submission; the
+# home folder, SUBMISSIONS, OUT (but the exercise tree, read-only), the project's solutions/
+# and its build/ folder are not visible. Run as root, the grader first becomes the user nobody
+# in it, so that the process limit counts the sandbox's processes. Under limits: CPU time,
+# wall time, processes, file size, and (AddressSanitizer's) memory, each named in the
+# feedback when a run reaches it. Where the sandbox cannot start, the grader stops saying
+# why; UNSAFE=1 runs without it (trusted submissions only). Not yet: the compiles of a
+# submission run under the limits but outside the sandbox (an #include or .incbin can read a
+# file the instructor can).
 #   grade.sh <source dir> <submissions dir> <out dir> [<weights file>]
 #   environment: UNSAFE, LESSONS (e.g. "1,2"; all by default), TREE, JOBS,
 #   SOA_EXERCISE_TIME_LIMIT (seconds per exercise, 10 by default)
@@ -53,7 +61,6 @@ die() {
   exit 1
 }
 
-[ "${UNSAFE:-}" = 1 ] || die "the sandbox (bubblewrap) is not implemented yet: student code would run with your rights; run with UNSAFE=1 only on trusted submissions"
 [ -n "$src" ] && [ -d "$src/exercises" ] || die "usage: grade.sh <source dir> <submissions dir> <out dir> [<weights file>]"
 [ -n "$subs" ] || die "SUBMISSIONS=DIR is missing: the folder of the students' submissions"
 [ -d "$subs" ] || die "SUBMISSIONS=$subs is not a folder"
@@ -70,6 +77,71 @@ work=$out/.work
 if [ -n "$(ls -A "$out")" ] && [ ! -f "$work/grade-out" ]; then
   die "OUT=$out is not empty and is not the output of make grade"
 fi
+
+# --- the sandbox and the limits ---------------------------------------------------------------
+# The limits of a lesson's run (the checker runs each exercise in a child process, stopped
+# after SOA_EXERCISE_TIME_LIMIT s of wall time, with an output limit of its own).
+per_exercise=${SOA_EXERCISE_TIME_LIMIT:-10}
+lim_wall=300        # s of wall time for a lesson's whole run, or for one compile
+lim_cpu=300         # s of CPU time, likewise
+lim_nproc=64        # processes (in the sandbox, as nobody; not applied with UNSAFE=1 as root)
+lim_fsize=256       # MB: the largest file written (the feedback is a file), and the private /tmp
+lim_mem=4096        # MB: AddressSanitizer's limit on an allocation and on the resident memory
+drop=""
+if [ "${UNSAFE:-}" = 1 ]; then
+  sandbox=none
+else
+  sandbox=bwrap
+  command -v bwrap >/dev/null 2>&1 ||
+    die "the sandbox cannot start: bwrap is not installed (Debian package bubblewrap: make deps); UNSAFE=1 grades without it, for trusted submissions only"
+  [ "$(id -u)" != 0 ] || drop="setpriv --reuid=65534 --regid=65534 --clear-groups"
+  # shellcheck disable=SC2086
+  why=$($drop bwrap --unshare-all --die-with-parent --ro-bind / / --proc /proc --dev /dev \
+    --tmpfs /tmp true 2>&1) ||
+    die "the sandbox cannot start: bwrap: $(printf '%s' "$why" | head -1) (user namespaces disabled?); UNSAFE=1 grades without it, for trusted submissions only"
+fi
+# in_sandbox <scratch> <command...>: the command under the limits, in the sandbox unless
+# UNSAFE=1, with <scratch> (made here, empty) its working folder and the only one it can
+# write. Exit 137 (killed) when a time limit is reached.
+in_sandbox() {
+  scratch=$1
+  shift
+  rm -rf "${scratch:?}"
+  mkdir -p "$scratch"
+  limits="prlimit --cpu=$lim_cpu --fsize=$((lim_fsize << 20)) --core=0"
+  if [ $sandbox = none ]; then
+    [ "$(id -u)" = 0 ] || limits="$limits --nproc=$lim_nproc"
+    # shellcheck disable=SC2086
+    (cd "$scratch" && timeout -s KILL "$lim_wall" $limits "$@")
+    return
+  fi
+  [ -z "$drop" ] || chown 65534:65534 "$scratch"
+  # bwrap's options are put before the command last to first. The hidden folders (those not
+  # inside another) are empty and read-only: a tmpfs each, remounted read-only once the
+  # folders bound inside them are.
+  hidden=$(for d in "${HOME:-/}" "$src/build" "$src/solutions" "$out" "$subs"; do
+    [ "$d" = / ] || [ ! -d "$d" ] || printf '%s\n' "$d"; done | sort -u |
+    awk '{ for (k = 1; k <= n; k++) if (index($0 "/", top[k] "/") == 1) next; top[++n] = $0; print }')
+  set -- --chdir "$scratch" -- "$@"
+  old_ifs=$IFS
+  IFS='
+'
+  for d in $hidden; do set -- --remount-ro "$d" "$@"; done
+  set -- --ro-bind "$tree" "$tree" --ro-bind "$work/hints" "$work/hints" \
+    --bind "$scratch" "$scratch" "$@"
+  for d in $hidden; do
+    case "$src/" in "$d"/*) ;; *) set -- --tmpfs "$d" "$@" ;; esac
+  done
+  set -- --ro-bind "$src" "$src" "$@"
+  for d in $hidden; do
+    case "$src/" in "$d"/*) set -- --tmpfs "$d" "$@" ;; esac
+  done
+  IFS=$old_ifs
+  # shellcheck disable=SC2086
+  timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc bwrap --unshare-all \
+    --die-with-parent --new-session --ro-bind / / --proc /proc --dev /dev \
+    --size $((lim_fsize << 20)) --tmpfs /tmp "$@"
+}
 
 # The lessons graded: NN-topic folders of the project.
 if [ -n "${LESSONS:-}" ]; then
@@ -138,6 +210,9 @@ if [ -n "$weights" ]; then
 fi
 
 max=$(awk -F '\t' '{ s += $2 } END { printf "%g", s }' "$work/weights.tsv")
+
+[ $sandbox = bwrap ] ||
+  echo "grade: UNSAFE=1: student code runs without the sandbox, with your rights" >&2
 
 # The checker names a level 3 exercise's mistake once every hint is read: here, for all.
 cut -f2 "$work/all-exercises.tsv" | while read -r id; do echo 99 >"$work/hints/$id"; done
@@ -294,16 +369,30 @@ grade_one() {  # <entry> <kind>
     rm -f "$prog"
     find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' -exec rm -f {} + 2>/dev/null
     echo "== Lesson $nn exercises (exercises/$l) ==" >>"$feedback"
-    if cmake --build "$tree" -j "$jobs" --target "ex$nn-exercises" >"$log" 2>&1; then
+    if timeout -s KILL "$lim_wall" cmake --build "$tree" -j "$jobs" --target "ex$nn-exercises" \
+      >"$log" 2>&1; then
       set --
       find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' >"$work/diags" 2>/dev/null
       while IFS= read -r d; do set -- "$@" --warnings "$d"; done <"$work/diags"
       rm -f "$work/lesson.tsv"
-      (cd "$cases" && SOA_EXERCISE_CASES=$cases SOA_EXERCISE_HINTS=$work/hints \
-        ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=4096:hard_rss_limit_mb=4096 \
-        "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
-        --results "$work/lesson.tsv" "$@") >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr" ||
-        echo "  the test program stopped (see $work/logs/$i-ex$nn.stderr)" >>"$feedback"
+      began=$(date +%s)
+      SOA_EXERCISE_CASES=$cases/$nn SOA_EXERCISE_HINTS=$work/hints \
+        ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=$lim_mem:hard_rss_limit_mb=$lim_mem \
+        in_sandbox "$cases/$nn" "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
+        --results "$cases/$nn/lesson.tsv" "$@" >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr"
+      rc=$?
+      case $rc in
+        0 | 1) ;;
+        137)
+          if [ $(($(date +%s) - began)) -ge "$lim_wall" ]; then
+            echo "  the test program was stopped at a limit: $lim_wall s of wall time for the lesson" >>"$feedback"
+          else
+            echo "  the test program was stopped at a limit: $lim_cpu s of CPU time (or killed)" >>"$feedback"
+          fi ;;
+        153) echo "  the test program was stopped at a limit: a file (its output) of $lim_fsize MB" >>"$feedback" ;;
+        *) echo "  the test program stopped (exit $rc; see $work/logs/$i-ex$nn.stderr)" >>"$feedback" ;;
+      esac
+      [ -f "$cases/$nn/lesson.tsv" ] && [ ! -L "$cases/$nn/lesson.tsv" ] && cp "$cases/$nn/lesson.tsv" "$work/lesson.tsv"
       touch "$work/lesson.tsv"
       cut -f1,3- "$work/lesson.tsv" >>"$results"  # <id>\t<status>\t<message>
       # An exercise the program never judged (it stopped): crashed.
@@ -312,6 +401,7 @@ grade_one() {  # <entry> <kind>
         "$work/lesson.tsv" "$work/exercises.tsv" >>"$results"
     else
       errors=$(grep -m8 -E 'error|note: +candidate' "$log" | sed "s|$cur/||g")
+      [ -n "$errors" ] || errors="the compile was stopped at the limit of $lim_wall s"
       {
         echo "  does not compile yet (the first errors):"
         printf '%s\n' "$errors" | sed 's/^/    /'

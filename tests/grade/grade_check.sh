@@ -12,9 +12,19 @@
 #   dave         a folder whose code does not compile
 #   erin         a folder with no exercises/
 #   mallory.zip  a zip with an entry ../../x: refused, and the grader goes on
+# and the hostile ones, each the solutions with:
+#   frank        an endless loop in 1.1: 1.1 timed out, the rest pass
+#   grace        exit(0) from a static initializer: every exercise crashed (never judged)
+#   heidi        a static initializer that writes into the project, OUT, the submissions and
+#                ../, reads the solutions and /etc/shadow, opens a network connection: none of
+#                it works (the sandbox), every exercise passes
+#   ivan         a fork bomb in 1.1: 1.1 timed out (the process limit holds it), the rest pass
+#   judy         1.1 wrong, and a static initializer that prints pass lines and writes a
+#                results file of passes into its scratch folder: 1.1 FAIL
 # Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
 # the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
-# written outside OUT, and the one-line refusals (no UNSAFE=1, a bad weights line).
+# written outside OUT, and the one-line refusals (a sandbox that cannot start, a bad weights
+# line). heidi and ivan only where the sandbox starts: without it they would do what they try.
 #   grade_check.sh <source dir> <exercise tree> <scratch dir>
 set -u
 src=$1
@@ -85,6 +95,61 @@ git -C "$subs/carol" init -q &&
   git -C "$subs/carol" -c user.name=carol -c user.email=carol@example.org commit -q -m work ||
   { echo "FAIL: could not make carol's git repository"; exit 1; }
 
+# The class is graded in the sandbox where this machine can start it (bwrap installed, user
+# namespaces allowed), else with UNSAFE=1, saying so.
+sandboxed=1
+unsafe=""
+if ! bwrap --unshare-all --ro-bind / / true 2>/dev/null &&
+  ! setpriv --reuid=65534 --regid=65534 --clear-groups bwrap --unshare-all --ro-bind / / true 2>/dev/null; then
+  echo "note: bubblewrap cannot start here: the class is graded with UNSAFE=1, the sandbox's checks left out"
+  sandboxed=""
+  unsafe=1
+fi
+
+# The hostile students: the solutions with <code> after the #include of exercises.hpp and
+# <body> first in apply_phi (1.1).
+hostile() {  # <student> <code> <body>
+  mkdir -p "$subs/$1/exercises/$lesson"
+  CODE=$2 BODY=$3 awk '{ print }
+    /#include "exercises.hpp"/ { print ENVIRON["CODE"] }
+    /^Force apply_phi\(/ { print ENVIRON["BODY"] }' "$solution" \
+    >"$subs/$1/exercises/$lesson/exercises.cpp"
+}
+hostile frank "" "  for (volatile unsigned spin = 0;; spin = spin + 1u) {}"
+hostile grace "#include <cstdlib>
+static const int quits = (std::exit(0), 0);" ""
+[ -z "$sandboxed" ] || hostile heidi "#include <cstdio>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+static int tries() {
+  for (const char* p : {\"$src/HACKED\", \"$out/HACKED\", \"$subs/HACKED\", \"../HACKED\",
+                        \"$scratch/HACKED\"})
+    if (std::FILE* f = std::fopen(p, \"w\")) { std::fclose(f); std::printf(\"WROTE %s\\n\", p); }
+  for (const char* p : {\"$solution\", \"/etc/shadow\"})
+    if (std::FILE* f = std::fopen(p, \"r\")) { std::fclose(f); std::printf(\"READ %s\\n\", p); }
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(80);
+  a.sin_addr.s_addr = htonl(0x01010101);
+  if (s >= 0 && connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0) std::printf(\"CONNECTED\\n\");
+  if (s >= 0) close(s);
+  return 0;
+}
+static const int tried = tries();" ""
+[ -z "$sandboxed" ] || hostile ivan "#include <unistd.h>" "  for (;;) fork();"
+hostile judy "#include <cstdio>
+static int fake() {
+  std::printf(\"1.1 apply_phi pass\\n[  PASSED  ] 9 tests.\\n\");
+  if (std::FILE* f = std::fopen(\"lesson.tsv\", \"w\")) {
+    std::fputs(\"1.1\\tapply_phi\\tpass\\t\\n\", f);
+    std::fclose(f);
+  }
+  return 0;
+}
+static const int faked = fake();" "  return Force(f_y.linear(), f_y.angular());"
+
 # dave, erin
 mkdir -p "$subs/dave/exercises/$lesson" "$subs/erin"
 { cat "$stub"; echo "int broken = ;"; } >"$subs/dave/exercises/$lesson/exercises.cpp"
@@ -102,12 +167,17 @@ printf '# 1.2 counts three\n1.2 3\n' >"$scratch/weights"
 touch "$scratch/stamp"
 sleep 1
 
-# The refusals: one line, non-zero, nothing written.
-msg=$(sh "$here/grade.sh" "$src" "$subs" "$scratch/refused" 2>&1)
+# The refusals: one line, non-zero, nothing written. A bwrap that cannot start (as where user
+# namespaces are disabled): the grader stops, naming the sandbox.
+mkdir -p "$scratch/nobwrap"
+printf '#!/bin/sh\necho "bwrap: No permissions to create new namespace" >&2\nexit 1\n' \
+  >"$scratch/nobwrap/bwrap"
+chmod +x "$scratch/nobwrap/bwrap"
+msg=$(PATH=$scratch/nobwrap:$PATH sh "$here/grade.sh" "$src" "$subs" "$scratch/refused" 2>&1)
 rc=$?
-check "without UNSAFE=1: one line naming the sandbox, exit non-zero" \
+check "a sandbox that cannot start: one line naming it, exit non-zero" \
   test $rc != 0 -a "$(printf '%s\n' "$msg" | wc -l)" = 1 -a ! -e "$scratch/refused/gradebook.csv"
-case "$msg" in *bubblewrap*UNSAFE=1*) ;; *) echo "FAIL: the refusal says: $msg"; fail=1 ;; esac
+case "$msg" in *"sandbox cannot start"*"No permissions"*UNSAFE=1*) ;; *) echo "FAIL: the refusal says: $msg"; fail=1 ;; esac
 printf '1.2 three\n' >"$scratch/bad-weights"
 msg=$(UNSAFE=1 LESSONS=1 TREE=$tree sh "$here/grade.sh" "$src" "$subs" "$scratch/refused" \
   "$scratch/bad-weights" 2>&1)
@@ -117,7 +187,7 @@ check "a bad weights line: one line naming the file and line, exit non-zero" \
 case "$msg" in *"$scratch/bad-weights:1:"*) ;; *) echo "FAIL: the bad weights say: $msg"; fail=1 ;; esac
 
 # The class.
-UNSAFE=1 LESSONS=1 TREE=$tree JOBS=${JOBS:-2} sh "$here/grade.sh" "$src" "$subs" "$out" \
+UNSAFE=$unsafe LESSONS=1 TREE=$tree JOBS=${JOBS:-2} sh "$here/grade.sh" "$src" "$subs" "$out" \
   "$scratch/weights" 2>"$scratch/grade.err"
 rc=$?
 cat "$scratch/grade.err"
@@ -137,15 +207,36 @@ expect_row carol "carol,1,0,1,1,1,1,1,1,1,8"
 expect_row dave "dave,0,0,0,0,0,0,0,0,0,0"
 expect_row erin "erin,0,0,0,0,0,0,0,0,0,0"
 expect_row mallory "mallory,0,0,0,0,0,0,0,0,0,0"
-check "six rows" test "$(wc -l <"$out/gradebook.csv")" = 7
+expect_row frank "frank,0,3,1,1,1,1,1,1,1,10"
+expect_row grace "grace,0,0,0,0,0,0,0,0,0,0"
+if [ -n "$sandboxed" ]; then
+  expect_row heidi "heidi,1,3,1,1,1,1,1,1,1,11"
+  expect_row ivan "ivan,0,3,1,1,1,1,1,1,1,10"
+fi
+expect_row judy "judy,0,3,1,1,1,1,1,1,1,10"
+students=9
+[ -z "$sandboxed" ] || students=11
+check "a row per student" test "$(wc -l <"$out/gradebook.csv")" = $((students + 1))
 srow() { grep "^$1," "$out/statuses.csv"; }
 check "bob: 1.5 to 1.9 not done" \
   test "$(srow bob)" = "bob,pass,pass,pass,pass,not done,not done,not done,not done,not done"
 check "carol: 1.2 FAIL" test "$(srow carol | cut -d, -f3)" = FAIL
 check "dave: does not compile" test "$(srow dave | cut -d, -f2)" = "does not compile"
-check "class.md counts carol's transpose: 1.2, 1 of 6" \
-  grep -q '^- 1\.2 ([^)]*): 1 of 6 — likely mistake (transpose)' "$out/class.md"
-check "class.md: 1.1 passes for 3 of 6" grep -q '^| 1\.1 [^|]* | 3 | 0 | 2 | 1 | ' "$out/class.md"
+check "frank: 1.1 timed out" test "$(srow frank | cut -d, -f2)" = "timed out"
+check "grace: 1.1 crashed" test "$(srow grace | cut -d, -f2)" = "crashed"
+check "judy: 1.1 FAIL" test "$(srow judy | cut -d, -f2)" = FAIL
+if [ -n "$sandboxed" ]; then
+  check "ivan: 1.1 timed out" test "$(srow ivan | cut -d, -f2)" = "timed out"
+  check "heidi: nothing written, read or connected from the sandbox" \
+    test -z "$(grep -E '^ *(WROTE|READ /work|READ [^ ]*solutions|READ /etc/shadow|CONNECTED)' "$out/feedback/heidi.md")"
+  check "heidi: no HACKED file anywhere" \
+    test ! -e "$src/HACKED" -a ! -e "$out/HACKED" -a ! -e "$subs/HACKED" -a ! -e "$scratch/HACKED"
+fi
+check "class.md counts carol's transpose: 1.2, 1 of $students" \
+  grep -q "^- 1\\.2 ([^)]*): 1 of $students — likely mistake (transpose)" "$out/class.md"
+passed=3
+[ -z "$sandboxed" ] || passed=4
+check "class.md: 1.1 passes for $passed of $students" grep -q "^| 1\\.1 [^|]* | $passed | " "$out/class.md"
 check "class.md: nobody left out an exercise" grep -q '^None: every exercise was attempted' "$out/class.md"
 check "erin's feedback: no exercises/ folder" grep -q 'no exercises/ folder' "$out/feedback/erin.md"
 check "mallory's feedback: refused, naming the entry" grep -q 'refused: .*\.\./\.\./x' "$out/feedback/mallory.md"
@@ -155,7 +246,7 @@ check "dave's feedback: the compiler's error" grep -q 'error' "$out/feedback/dav
 check "carol's feedback: the table of make exercises naming the mistake" \
   grep -q 'likely mistake (transpose)' "$out/feedback/carol.md"
 n_json=$(ls "$out/results/"*.json | wc -l)
-check "a results.json per student" test "$n_json" = 6
+check "a results.json per student" test "$n_json" = $students
 check "every results.json in Gradescope's format" \
   cmake "-DFILES=$(ls "$out/results/"*.json | tr '\n' ';')" -P "$here/gradescope_check.cmake"
 check "alice's results.json: score 11" grep -q '"score": 11,' "$out/results/alice.json"
@@ -164,5 +255,5 @@ check "nothing written outside OUT: no ../../x" \
 check "nothing written into the submissions" test -z "$(find "$subs" -newer "$scratch/stamp" ! -type l)"
 check "no partial file left (*.tmp)" test -z "$(find "$out" -name '*.tmp' ! -path '*/.work/*')"
 check "the progress lines: N of M, the student, the time left" \
-  grep -q '^grade: 3 of 6, carol, about [0-9]* min [0-9]* s left$' "$scratch/grade.err"
+  grep -q "^grade: 3 of $students, carol, about [0-9]* min [0-9]* s left\$" "$scratch/grade.err"
 exit $fail

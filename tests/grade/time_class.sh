@@ -5,7 +5,7 @@
 # (<scratch>/out/.work/tree, compiled once and kept for the next measurement) or TREE=.
 # grade.sh's last line gives the time of the library and the checkers, the time of the
 # class and the time a submission; this script adds the machine.
-#   UNSAFE=1 [LESSONS=1,2] [JOBS=N] [TREE=DIR] time_class.sh <source dir> <scratch> <count>
+#   [UNSAFE=1] [LESSONS=1,2] [JOBS=N] [TREE=DIR] time_class.sh <source dir> <scratch> <count>
 set -eu
 src=$(cd "$1" && pwd)
 scratch=$2
