@@ -373,6 +373,10 @@ std::string stopped_message(const std::string& err, const std::string& log) {
   std::istringstream in(err);
   std::string line, reason;
   Frame student, checker;
+  static const std::regex student_file(R"(/[0-9][0-9]-[A-Za-z0-9-]+/[^/ ]+\.[ch]pp:[0-9])");
+  static const std::regex checker_file(R"(/tests/(exercises|support)/[^/ ]+\.[ch]pp:[0-9])");
+  static const std::regex student_function("^soa::ex[0-9]+::");
+  static const std::regex checker_function("^soa::test::|^Exercise[0-9]+_[0-9]+_.*::TestBody$");
   while (std::getline(in, line)) {
     if (reason.empty()) {
       std::size_t p;
@@ -386,6 +390,10 @@ std::string stopped_message(const std::string& err, const std::string& log) {
         reason = "AddressSanitizer: " + line.substr(p + 25, line.find(" on ", p) - p - 25);
       } else if ((p = line.find("runtime error: ")) != std::string::npos) {
         reason = "UBSan: " + line.substr(p + 15);
+        // UBSan prints no stack; its line begins with the place, "FILE:LINE:COLUMN: ".
+        const std::string place = line.substr(0, p >= 2 ? p - 2 : 0);
+        if (std::regex_search(place, student_file))
+          student.where = shorter(place, student_file, true);
       }
     }
     // The student's code: its functions (namespace soa::exNN) in a lesson's folder NN-topic/
@@ -396,10 +404,6 @@ std::string stopped_message(const std::string& err, const std::string& log) {
     if (!f.found() || student.found() || f.function == "on_fatal_signal" ||
         f.where.find("/exercise_main.cpp:") != std::string::npos)
       continue;
-    static const std::regex student_file(R"(/[0-9][0-9]-[A-Za-z0-9-]+/[^/ ]+\.[ch]pp:[0-9])");
-    static const std::regex checker_file(R"(/tests/(exercises|support)/[^/ ]+\.[ch]pp:[0-9])");
-    static const std::regex student_function("^soa::ex[0-9]+::");
-    static const std::regex checker_function("^soa::test::|^Exercise[0-9]+_[0-9]+_.*::TestBody$");
     if (std::regex_search(f.where, student_file) ||
         std::regex_search(f.function, student_function)) {
       student = f;
