@@ -35,11 +35,12 @@
 # Student code runs in a sandbox (bubblewrap, Debian bubblewrap; in_sandbox below): no
 # network, / read-only, a private /tmp and one writable scratch folder per submission; the
 # home folder, SUBMISSIONS, OUT (but the exercise tree, read-only), the project's solutions/
-# and its build/ folder are not visible. Run as root, the grader first becomes the user nobody
-# in it, so that the process limit counts the sandbox's processes. Under limits: CPU time,
-# wall time, processes, file size, and (AddressSanitizer's) memory, each named in the
-# feedback when a run reaches it. Where the sandbox cannot start, the grader stops saying
-# why; UNSAFE=1 runs without it (trusted submissions only). Not yet: the compiles of a
+# and its build/ folder are not visible. Run as root, student code runs as the user nobody
+# (in the sandbox and without it), so that the process limit counts its processes and it
+# cannot write what root owns. Under limits: CPU time, wall time, processes, file size, and
+# (AddressSanitizer's) memory, each named in the feedback when a run reaches it. Where the
+# sandbox cannot start, the grader stops saying why; UNSAFE=1 runs without it (trusted
+# submissions, or a container of their own as on Gradescope). Not yet: the compiles of a
 # submission run under the limits but outside the sandbox (an #include or .incbin can read a
 # file the instructor can).
 #   grade.sh <source dir> <submissions dir> <out dir> [<weights file>]
@@ -84,17 +85,18 @@ fi
 per_exercise=${SOA_EXERCISE_TIME_LIMIT:-10}
 lim_wall=300        # s of wall time for a lesson's whole run, or for one compile
 lim_cpu=300         # s of CPU time, likewise
-lim_nproc=64        # processes (in the sandbox, as nobody; not applied with UNSAFE=1 as root)
+lim_nproc=64        # processes (of the user nobody when run as root, else of yours)
 lim_fsize=256       # MB: the largest file written (the feedback is a file), and the private /tmp
 lim_mem=4096        # MB: AddressSanitizer's limit on an allocation and on the resident memory
+# Run as root, student code runs as the user nobody, in the sandbox or not.
 drop=""
+[ "$(id -u)" != 0 ] || drop="setpriv --reuid=65534 --regid=65534 --clear-groups"
 if [ "${UNSAFE:-}" = 1 ]; then
   sandbox=none
 else
   sandbox=bwrap
   command -v bwrap >/dev/null 2>&1 ||
     die "the sandbox cannot start: bwrap is not installed (Debian package bubblewrap: make deps); UNSAFE=1 grades without it, for trusted submissions only"
-  [ "$(id -u)" != 0 ] || drop="setpriv --reuid=65534 --regid=65534 --clear-groups"
   # shellcheck disable=SC2086
   why=$($drop bwrap --unshare-all --die-with-parent --ro-bind / / --proc /proc --dev /dev \
     --tmpfs /tmp true 2>&1) ||
@@ -109,13 +111,12 @@ in_sandbox() {
   rm -rf "${scratch:?}"
   mkdir -p "$scratch"
   limits="prlimit --cpu=$lim_cpu --fsize=$((lim_fsize << 20)) --core=0"
+  [ -z "$drop" ] || chown 65534:65534 "$scratch"
   if [ $sandbox = none ]; then
-    [ "$(id -u)" = 0 ] || limits="$limits --nproc=$lim_nproc"
     # shellcheck disable=SC2086
-    (cd "$scratch" && timeout -s KILL "$lim_wall" $limits "$@")
+    (cd "$scratch" && timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc "$@")
     return
   fi
-  [ -z "$drop" ] || chown 65534:65534 "$scratch"
   # bwrap's options are put before the command last to first. The hidden folders (those not
   # inside another) are empty and read-only: a tmpfs each, remounted read-only once the
   # folders bound inside them are.
@@ -211,8 +212,10 @@ fi
 
 max=$(awk -F '\t' '{ s += $2 } END { printf "%g", s }' "$work/weights.tsv")
 
-[ $sandbox = bwrap ] ||
-  echo "grade: UNSAFE=1: student code runs without the sandbox, with your rights" >&2
+if [ $sandbox = none ]; then
+  if [ -n "$drop" ]; then who="as the user nobody"; else who="with your rights"; fi
+  echo "grade: UNSAFE=1: student code runs without the sandbox, $who" >&2
+fi
 
 # The checker names a level 3 exercise's mistake once every hint is read: here, for all.
 cut -f2 "$work/all-exercises.tsv" | while read -r id; do echo 99 >"$work/hints/$id"; done

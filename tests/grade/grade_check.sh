@@ -21,6 +21,7 @@
 #   ivan         a fork bomb in 1.1: 1.1 timed out (the process limit holds it), the rest pass
 #   judy         1.1 wrong, and a static initializer that prints pass lines and writes a
 #                results file of passes into its scratch folder: 1.1 FAIL
+# And Gradescope's run_autograder on alice's work, and on a grader that fails.
 # Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
 # the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
 # written outside OUT, and the one-line refusals (a sandbox that cannot start, a bad weights
@@ -254,6 +255,21 @@ check "nothing written outside OUT: no ../../x" \
   test ! -e "$out/x" -a ! -e "$scratch/x" -a ! -e "$out/.work/x" -a ! -e "$(dirname "$scratch")/x"
 check "nothing written into the submissions" test -z "$(find "$subs" -newer "$scratch/stamp" ! -type l)"
 check "no partial file left (*.tmp)" test -z "$(find "$out" -name '*.tmp' ! -path '*/.work/*')"
+# Gradescope's run_autograder (tests/grade/gradescope/) on alice's work, AUTOGRADER standing
+# for /autograder and this test's exercise tree for setup.sh's; then with a grader that
+# fails (no lesson 99): a results.json that says so, never none.
+ag=$scratch/ag
+mkdir -p "$ag/submission"
+cp -R "$subs/alice/exercises" "$ag/submission/"
+ln -s "$src" "$ag/source"
+AUTOGRADER=$ag LESSONS=1 TREE=$tree sh "$src/tests/grade/gradescope/run_autograder" 2>"$scratch/ag.err"
+check "run_autograder: results.json, score 9" grep -q '"score": 9,' "$ag/results/results.json"
+cp "$ag/results/results.json" "$scratch/ag-alice.json"
+AUTOGRADER=$ag LESSONS=99 sh "$src/tests/grade/gradescope/run_autograder" 2>/dev/null
+check "run_autograder, the grader failing: results.json naming the reason" \
+  grep -q '"output": "The autograder could not grade this submission: .*lesson 99' "$ag/results/results.json"
+check "run_autograder's results.json files in Gradescope's format" \
+  cmake "-DFILES=$scratch/ag-alice.json;$ag/results/results.json" -P "$here/gradescope_check.cmake"
 check "the progress lines: N of M, the student, the time left" \
   grep -q "^grade: 3 of $students, carol, about [0-9]* min [0-9]* s left\$" "$scratch/grade.err"
 exit $fail
