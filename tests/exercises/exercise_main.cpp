@@ -29,7 +29,9 @@
 //                       forbidden-call; the message (the row's warnings, failures and notes)
 //                       with backslash, newline and tab written \\, \n and \t, other control
 //                       characters as '?'. Written by this process, the parent of the
-//                       exercises' runs, into FILE.tmp then renamed: no run writes it.
+//                       exercises' runs, into FILE.tmp then renamed. The student's code is
+//                       linked into this process too: what that leaves open is on the notes'
+//                       page "Instructors" (a result the student cannot forge).
 #include <execinfo.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>

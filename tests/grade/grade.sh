@@ -82,7 +82,6 @@ fi
 # --- the sandbox and the limits ---------------------------------------------------------------
 # The limits of a lesson's run (the checker runs each exercise in a child process, stopped
 # after SOA_EXERCISE_TIME_LIMIT s of wall time, with an output limit of its own).
-per_exercise=${SOA_EXERCISE_TIME_LIMIT:-10}
 lim_wall=300        # s of wall time for a lesson's whole run, or for one compile
 lim_cpu=300         # s of CPU time, likewise
 lim_nproc=64        # processes (of the user nobody when run as root, else of yours)
