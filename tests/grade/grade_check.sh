@@ -20,7 +20,18 @@
 #                it works (the sandbox), every exercise passes
 #   ivan         a fork bomb in 1.1: 1.1 timed out (the process limit holds it), the rest pass
 #   judy         1.1 wrong, and a static initializer that prints pass lines and writes a
-#                results file of passes into its scratch folder: 1.1 FAIL
+#                results file of passes into its scratch folder, and weak definitions of the
+#                checker's Check::add and Check::fail that say "pass": 1.1 FAIL
+#   kevin, liam  _exit(0), abort() from a static initializer: every exercise crashed
+#   mona         in 1.2 an allocation of 10 GB (out of memory), in 1.3 1 GB of output (stopped
+#                at the output limit), in 1.4 a SIGSEGV handler that returns, then a segfault
+#                (timed out), in 1.6 a call of soa::Phi::matrix, which 1.6 reproduces
+#   nick         defines main: does not compile (the runner has its own)
+#   olga         1.1 wrong, and strong definitions of the checker's Check::add and Check::fail
+#                (asm labels) that say "pass": does not compile, naming them
+# and the planted ones: patty has one planted mistake of the checker's in each exercise, quinn
+# the two that are left (every kind of lesson 1's catalogue; carol's 1.2 transpose too), and
+# class.md must count each.
 # And Gradescope's run_autograder on alice's work, and on a grader that fails.
 # Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
 # the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
@@ -74,23 +85,39 @@ awk -v half="$half" '
 printf 'int not_taken;\n' >"$scratch/make/bob/exercises/$lesson/$(printf 'caf\351').cpp"
 tar -czf "$subs/bob.tar.gz" -C "$scratch/make/bob" exercises
 
-# carol: the planted mistake 1.2/transpose, its FIND text replaced by its WRONG text.
-plant() {  # <FIND|WRONG>
-  awk -v key="$1" '/^soa_plant\(1\.2 transpose$/ { on = 1; next }
-    on && index($0, key " [=[") { s = substr($0, index($0, "[=[") + 3); sub(/\]=\].*/, "", s); print s; exit }' \
-    "$src/tests/exercises/$lesson.cpp"
+# The planted mistakes of the checker (tests/exercises/NN-topic.cpp, tests/exercises/plant.cmake):
+# plant_field <exercise> <id> <FIND|WRONG|TYPE|EXPECT|NAMED> prints the field's text.
+plant_field() {
+  awk -v head="soa_plant($1 $2" -v key="$3" '$0 == head { on = 1; next }
+    on && /^soa_plant\(/ { exit }
+    on && index($0, key " [=[") { s = substr($0, index($0, key " [=[") + length(key) + 4)
+      sub(/\]=\].*/, "", s); print s; exit }' "$src/tests/exercises/$lesson.cpp"
 }
-find_text=$(plant FIND)
-wrong_text=$(plant WRONG)
-[ -n "$find_text" ] && [ -n "$wrong_text" ] ||
-  { echo "FAIL: no planted mistake 1.2 transpose in tests/exercises/$lesson.cpp"; exit 1; }
-mkdir -p "$subs/carol/exercises/$lesson"
-awk -v find="$find_text" -v wrong="$wrong_text" '{
-    at = index($0, find)
-    if (at) { $0 = substr($0, 1, at - 1) wrong substr($0, at + length(find)); n++ }
-    print }
-  END { if (n != 1) exit 1 }' "$solution" >"$subs/carol/exercises/$lesson/exercises.cpp" ||
-  { echo "FAIL: the FIND text of 1.2 transpose is not once in $solution"; exit 1; }
+# planted <student> <exercise>/<id>...: the solutions with each mistake in place, as
+# plant.cmake writes it (its FIND text replaced by TYPE(WRONG)).
+planted() {
+  who=$1
+  shift
+  mkdir -p "$subs/$who/exercises/$lesson"
+  cp "$solution" "$scratch/planting"
+  for p in "$@"; do
+    find_text=$(plant_field "${p%%/*}" "${p#*/}" FIND)
+    wrong_text=$(plant_field "${p%%/*}" "${p#*/}" WRONG)
+    type_text=$(plant_field "${p%%/*}" "${p#*/}" TYPE)
+    [ -n "$find_text" ] && [ -n "$wrong_text" ] ||
+      { echo "FAIL: no planted mistake $p in tests/exercises/$lesson.cpp"; exit 1; }
+    awk -v find="$find_text" -v wrong="$type_text($wrong_text)" '{
+        at = index($0, find)
+        if (at) { $0 = substr($0, 1, at - 1) wrong substr($0, at + length(find)); n++ }
+        print }
+      END { if (n != 1) exit 1 }' "$scratch/planting" >"$scratch/planting.new" ||
+      { echo "FAIL: the FIND text of $p is not once in $solution"; exit 1; }
+    mv "$scratch/planting.new" "$scratch/planting"
+  done
+  mv "$scratch/planting" "$subs/$who/exercises/$lesson/exercises.cpp"
+}
+# carol: the planted mistake 1.2/transpose, in a git repository.
+planted carol 1.2/transpose
 git -C "$subs/carol" init -q &&
   git -C "$subs/carol" add exercises &&
   git -C "$subs/carol" -c user.name=carol -c user.email=carol@example.org commit -q -m work ||
@@ -140,6 +167,17 @@ static int tries() {
 }
 static const int tried = tries();" ""
 [ -z "$sandboxed" ] || hostile ivan "#include <unistd.h>" "  for (;;) fork();"
+# The checker's Check::add (each instantiation) and Check::fail, as its object file names them:
+# a student's definitions of these, through asm labels, answer "pass" for every comparison.
+checker_object=$(ls "$tree/tests/CMakeFiles/ex01-tests.dir/exercises/"*.o 2>/dev/null | head -1)
+says_pass() {  # <attributes>: C++ defining every such symbol to say "pass"
+  nm "$checker_object" 2>/dev/null | awk -v attr="$1" '$2 == "W" && $3 ~ /^_ZN3soa4test5Check(3add|4failEj$)/ {
+    n++
+    if ($3 ~ /4failEj$/) print attr "void says_pass_" n "() asm(\"" $3 "\");\n" attr "void says_pass_" n "() {}"
+    else print attr "bool says_pass_" n "() asm(\"" $3 "\");\n" attr "bool says_pass_" n "() { return true; }" }'
+}
+[ -n "$(says_pass "")" ] ||
+  { echo "FAIL: no Check::add or Check::fail in the checker's object file $checker_object"; exit 1; }
 hostile judy "#include <cstdio>
 static int fake() {
   std::printf(\"1.1 apply_phi pass\\n[  PASSED  ] 9 tests.\\n\");
@@ -149,7 +187,43 @@ static int fake() {
   }
   return 0;
 }
-static const int faked = fake();" "  return Force(f_y.linear(), f_y.angular());"
+static const int faked = fake();
+$(says_pass "__attribute__((weak)) ")" "  return Force(f_y.linear(), f_y.angular());"
+hostile olga "$(says_pass "")" "  return Force(f_y.linear(), f_y.angular());"
+hostile nick "int main() { return 0; }" ""
+hostile kevin "#include <unistd.h>
+static const int quits = (_exit(0), 0);" ""
+hostile liam "#include <cstdlib>
+static const int aborts = (std::abort(), 0);" ""
+# mona: four exercises, each hostile in its own way.
+mkdir -p "$subs/mona/exercises/$lesson"
+awk '{ print }
+  /#include "exercises.hpp"/ { print "#include <csignal>\n#include <cstdint>\n#include <cstdio>\n#include <vector>" }
+  /^Acceleration spatial_cross\(/ {
+    print "  {\n    std::vector<char> ten_gb(std::size_t(10) << 30, 1);"
+    print "    if (ten_gb[std::size_t(7) << 30] != 1) return {};\n  }" }
+  /^SpatialInertia parallel_axis\(/ {
+    print "  for (long i = 0; i < (1L << 24); ++i)  // 1 GB"
+    print "    std::fputs(\"0123456789012345678901234567890123456789012345678901234567890123\\n\", stdout);" }
+  /^UnitQuaternion quaternion_from_axis_angle\(/ {
+    print "  std::signal(SIGSEGV, [](int) {});"
+    print "  *reinterpret_cast<volatile int*>(std::uintptr_t(64)) = 1;" }
+  /^Velocity reverse_velocity\(/ { print "  (void)phi_xy.matrix();" }' "$solution" \
+  >"$subs/mona/exercises/$lesson/exercises.cpp"
+[ "$(grep -c -E 'ten_gb|1 GB|SIGSEGV|phi_xy.matrix' "$subs/mona/exercises/$lesson/exercises.cpp")" = 5 ] ||
+  { echo "FAIL: mona's functions 1.2, 1.3, 1.4 and 1.6 are not in $solution"; exit 1; }
+# patty and quinn: every planted mistake of lesson 1, one in each exercise.
+# patty and quinn: every planted mistake of lesson 1's checker, one in each exercise: patty has
+# the first of each exercise, quinn the second.
+sed -n 's|^soa_plant(\(1\.[0-9]*\) \([a-z0-9-]*\)$|\1/\2|p' "$src/tests/exercises/$lesson.cpp" >"$scratch/plants"
+patty=$(awk -F/ '!($1 in n) { n[$1]; print }' "$scratch/plants")
+quinn=$(awk -F/ '++n[$1] == 2' "$scratch/plants")
+[ -z "$(awk -F/ '++n[$1] == 3' "$scratch/plants")" ] ||
+  { echo "FAIL: an exercise of lesson 1 has three planted mistakes: add a student for the third"; exit 1; }
+# shellcheck disable=SC2086
+planted patty $patty
+# shellcheck disable=SC2086
+planted quinn $quinn
 
 # dave, erin
 mkdir -p "$subs/dave/exercises/$lesson" "$subs/erin"
@@ -215,8 +289,31 @@ if [ -n "$sandboxed" ]; then
   expect_row ivan "ivan,0,3,1,1,1,1,1,1,1,10"
 fi
 expect_row judy "judy,0,3,1,1,1,1,1,1,1,10"
-students=9
-[ -z "$sandboxed" ] || students=11
+expect_row kevin "kevin,0,0,0,0,0,0,0,0,0,0"
+expect_row liam "liam,0,0,0,0,0,0,0,0,0,0"
+expect_row mona "mona,1,0,0,0,1,0,1,1,1,5"
+expect_row nick "nick,0,0,0,0,0,0,0,0,0,0"
+expect_row olga "olga,0,0,0,0,0,0,0,0,0,0"
+failing_row() {  # <student> <exercise>/<id>...: the row with those exercises failed
+  who=$1
+  shift
+  r=$who
+  total=0
+  for e in 1.1 1.2 1.3 1.4 1.5 1.6 1.7 1.8 1.9; do
+    p=1
+    [ $e != 1.2 ] || p=3
+    for f in "$@"; do [ "${f%%/*}" != $e ] || p=0; done
+    r=$r,$p
+    total=$((total + p))
+  done
+  echo "$r,$total"
+}
+# shellcheck disable=SC2086
+expect_row patty "$(failing_row patty $patty)"
+# shellcheck disable=SC2086
+expect_row quinn "$(failing_row quinn $quinn)"
+students=16
+[ -z "$sandboxed" ] || students=18
 check "a row per student" test "$(wc -l <"$out/gradebook.csv")" = $((students + 1))
 srow() { grep "^$1," "$out/statuses.csv"; }
 check "bob: 1.5 to 1.9 not done" \
@@ -225,7 +322,39 @@ check "carol: 1.2 FAIL" test "$(srow carol | cut -d, -f3)" = FAIL
 check "dave: does not compile" test "$(srow dave | cut -d, -f2)" = "does not compile"
 check "frank: 1.1 timed out" test "$(srow frank | cut -d, -f2)" = "timed out"
 check "grace: 1.1 crashed" test "$(srow grace | cut -d, -f2)" = "crashed"
-check "judy: 1.1 FAIL" test "$(srow judy | cut -d, -f2)" = FAIL
+check "judy: 1.1 FAIL (her weak Check::add and Check::fail are not the ones linked)" \
+  test "$(srow judy | cut -d, -f2)" = FAIL
+check "kevin (_exit): every exercise crashed" \
+  test "$(srow kevin)" = "kevin,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed"
+check "liam (abort): every exercise crashed" \
+  test "$(srow liam)" = "liam,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed"
+check "mona: 10 GB out of memory, 1 GB of output stopped, a SIGSEGV handler timed out, a forbidden call" \
+  test "$(srow mona)" = "mona,pass,out of memory,crashed (SIGXFSZ),timed out,pass,calls the function it reproduces,pass,pass,pass"
+check "mona's feedback: the output limit named" grep -q 'printed more than 64 MB' "$out/feedback/mona.md"
+check "nick: does not compile, his main named" grep -q 'error: your code defines main()' "$out/feedback/nick.md"
+check "olga: does not compile, the checker's Check::add named" \
+  grep -q 'error: your code defines bool soa::test::Check::add<' "$out/feedback/olga.md"
+# Each planted mistake counted in class.md: a mistake the checker names, by its name (NAMED,
+# else EXPECT: the grader reads every hint), once per student who has it; a symptom by its
+# words; else the exercise's FAIL.
+for p in 1.2/transpose $patty $quinn; do echo "$p"; done | sort | uniq -c >"$scratch/plant-counts"
+while read -r count p; do
+  e=${p%%/*}
+  says=$(plant_field "$e" "${p#*/}" NAMED)
+  [ -n "$says" ] || says=$(plant_field "$e" "${p#*/}" EXPECT)
+  name=$(printf '%s\n' "$says" | sed -n 's/.*likely mistake \\(\([^\\]*\)\\).*/\1/p')
+  symptom=$(printf '%s\n' "$says" | sed -n 's/.*symptom: \([^\\[(]*\).*/\1/p')
+  e_re=$(echo "$e" | sed 's/\./\\./')
+  if [ -n "$name" ]; then
+    check "class.md counts $p: $count of $students, likely mistake ($name)" \
+      grep -q "^- $e_re ([^)]*): $count of $students — likely mistake ($name)" "$out/class.md"
+  elif [ -n "$symptom" ]; then
+    check "class.md counts $p: the symptom \"$symptom\"" \
+      sh -c 'grep "^- $1 (" "$3" | grep -qF -- " — symptom: $2"' - "$e_re" "$symptom" "$out/class.md"
+  else
+    check "class.md counts $p: a FAIL of $e" grep -q "^| $e_re [^|]* | [0-9]* | [1-9]" "$out/class.md"
+  fi
+done <"$scratch/plant-counts"
 if [ -n "$sandboxed" ]; then
   check "ivan: 1.1 timed out" test "$(srow ivan | cut -d, -f2)" = "timed out"
   check "heidi: nothing written, read or connected from the sandbox" \
@@ -233,10 +362,8 @@ if [ -n "$sandboxed" ]; then
   check "heidi: no HACKED file anywhere" \
     test ! -e "$src/HACKED" -a ! -e "$out/HACKED" -a ! -e "$subs/HACKED" -a ! -e "$scratch/HACKED"
 fi
-check "class.md counts carol's transpose: 1.2, 1 of $students" \
-  grep -q "^- 1\\.2 ([^)]*): 1 of $students — likely mistake (transpose)" "$out/class.md"
-passed=3
-[ -z "$sandboxed" ] || passed=4
+passed=4
+[ -z "$sandboxed" ] || passed=5
 check "class.md: 1.1 passes for $passed of $students" grep -q "^| 1\\.1 [^|]* | $passed | " "$out/class.md"
 check "class.md: nobody left out an exercise" grep -q '^None: every exercise was attempted' "$out/class.md"
 check "erin's feedback: no exercises/ folder" grep -q 'no exercises/ folder' "$out/feedback/erin.md"
