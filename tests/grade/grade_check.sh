@@ -19,9 +19,10 @@
 #                ../, reads the solutions and /etc/shadow, opens a network connection: none of
 #                it works (the sandbox), every exercise passes
 #   ivan         a fork bomb in 1.1: 1.1 timed out (the process limit holds it), the rest pass
-#   judy         1.1 wrong, and a static initializer that prints pass lines and writes a
-#                results file of passes into its scratch folder, and weak definitions of the
-#                checker's Check::add and Check::fail that say "pass": 1.1 FAIL
+#   judy         1.1 wrong, and a static initializer and a static destructor that print pass
+#                lines and write a results file of passes into its scratch folder, and weak
+#                definitions of the checker's Check::add and Check::fail that say "pass":
+#                1.1 FAIL
 #   kevin, liam  _exit(0), abort() from a static initializer: every exercise crashed
 #   mona         in 1.2 an allocation of 10 GB (out of memory), in 1.3 1 GB of output (stopped
 #                at the output limit), in 1.4 a SIGSEGV handler that returns, then a segfault
@@ -188,6 +189,10 @@ static int fake() {
   return 0;
 }
 static const int faked = fake();
+struct Again {  // and once more, after the runner has written its file
+  ~Again() { fake(); }
+};
+static Again again;
 $(says_pass "__attribute__((weak)) ")" "  return Force(f_y.linear(), f_y.angular());"
 hostile olga "$(says_pass "")" "  return Force(f_y.linear(), f_y.angular());"
 hostile nick "int main() { return 0; }" ""
