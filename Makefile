@@ -10,9 +10,10 @@
 #   make compare    the library beside Orocos KDL and MuJoCo (agreement, time, error) in
 #                   build/bench/compare.md (not part of make test; installs those two)
 #   make release    OUT=DIR: the student's repository, without the answers (instructors)
-#   make grade      SUBMISSIONS=DIR OUT=DIR [WEIGHTS=FILE] [LESSONS=1,2]: a class's
-#                   submissions judged by the checker, in a sandbox: gradebook, feedback,
-#                   Gradescope results, class report (instructors)
+#   make grade      SUBMISSIONS=DIR OUT=DIR [WEIGHTS=FILE] [LESSONS=1,2] [SEEDS=FILE]: a
+#                   class's submissions judged by the checker, in a sandbox, SEEDS adding
+#                   cases the students never drew: gradebook, feedback, Gradescope results,
+#                   class report (instructors)
 # Options: SANITIZE=1 (AddressSanitizer + UBSan, in build/sanitize), SANITIZE=clang (the same
 # with clang, in build/sanitize-clang: its AddressSanitizer also finds uses after scope that
 # GCC's misses), BUILD_TYPE=Debug (in build/debug), TESTS=regex (make test runs only the ctest
@@ -196,7 +197,7 @@ release:
 # (make exercise-tree's flags; TREE=DIR: an exercise tree already built), then only each
 # submission's code. Student code runs in a bubblewrap sandbox; UNSAFE=1 runs it without.
 grade:
-	@UNSAFE="$(UNSAFE)" LESSONS="$(LESSONS)" TREE="$(TREE)" JOBS="$(JOBS)" \
+	@UNSAFE="$(UNSAFE)" LESSONS="$(LESSONS)" TREE="$(TREE)" JOBS="$(JOBS)" SEEDS="$(SEEDS)" \
 	  sh tests/grade/grade.sh "$(CURDIR)" "$(SUBMISSIONS)" "$(OUT)" "$(WEIGHTS)"
 
 format:

@@ -32,6 +32,9 @@
 //                       exercises' runs, into FILE.tmp then renamed. The student's code is
 //                       linked into this process too: what that leaves open is on the notes'
 //                       page "Instructors" (a result the student cannot forge).
+//   --seed N            every case drawn with N mixed into its seed (seed_salt() of
+//                       tests/support/property.hpp): cases the students' own runs never
+//                       draw, for an instructor's grading (make grade SEEDS=FILE)
 #include <execinfo.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>
@@ -657,7 +660,15 @@ int main(int argc, char** argv) {
       results = argv[++i];
     else if (std::strcmp(argv[i], "--expect-all-fail") == 0)
       expect_all_fail = true;
-    else
+    else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
+      char* end = nullptr;
+      const unsigned long long seed = std::strtoull(argv[++i], &end, 10);
+      if (seed == 0 || *end != '\0' || argv[i][0] == '-') {
+        std::fprintf(stderr, "--seed %s: a positive whole number is expected\n", argv[i]);
+        return 2;
+      }
+      soa::test::seed_salt() = seed;
+    } else
       args.push_back(argv[i]);
   }
   int n = int(args.size());

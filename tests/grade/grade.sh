@@ -43,8 +43,14 @@
 # submissions, or a container of their own as on Gradescope). Not yet: the compiles of a
 # submission run under the limits but outside the sandbox (an #include or .incbin can read a
 # file the instructor can).
+#
+# The instructor's cases: SEEDS=FILE, a seed a line (a positive whole number; # starts a
+# comment), kept out of the students' reach (the file is yours, not the project's). Each
+# lesson's exercises that pass are run again once per seed, the checker drawing every case
+# with the seed mixed in (the runner's --seed): cases no student has seen. An exercise passes
+# only if it passes on them too; its row says which seed it failed on.
 #   grade.sh <source dir> <submissions dir> <out dir> [<weights file>]
-#   environment: UNSAFE, LESSONS (e.g. "1,2"; all by default), TREE, JOBS,
+#   environment: UNSAFE, LESSONS (e.g. "1,2"; all by default), TREE, JOBS, SEEDS,
 #   SOA_EXERCISE_TIME_LIMIT (seconds per exercise, 10 by default)
 set -u
 LC_ALL=C
@@ -211,6 +217,19 @@ fi
 
 max=$(awk -F '\t' '{ s += $2 } END { printf "%g", s }' "$work/weights.tsv")
 
+# The instructor's seeds.
+seeds=""
+if [ -n "${SEEDS:-}" ]; then
+  [ -f "$SEEDS" ] || die "SEEDS=$SEEDS is not a file"
+  seeds=$(awk -v file="$SEEDS" '{ sub(/#.*/, "") }
+    NF == 0 { next }
+    NF != 1 || $1 !~ /^[1-9][0-9]*$/ || length($1) > 18 {
+      bad = file ":" FNR ": expected a seed (a positive whole number such as 2027), got: " $0; exit 1 }
+    { list = list " " $1 }
+    END { print bad != "" ? bad : list; exit bad != "" }' "$SEEDS") || die "SEEDS=$seeds"
+  [ -n "$seeds" ] || die "SEEDS=$SEEDS: no seed in it"
+fi
+
 if [ $sandbox = none ]; then
   if [ -n "$drop" ]; then who="as the user nobody"; else who="with your rights"; fi
   echo "grade: UNSAFE=1: student code runs without the sandbox, $who" >&2
@@ -335,6 +354,36 @@ all_as() {  # <lesson> <status> <escaped message>
 }
 esc() { printf '%s\n' "$1" | tr -d '\000-\010\013-\037\177' | awk -f "$here/escape.awk"; }
 
+# run_lesson <scratch> <results copy> <runner's options...>: the lesson's checker program run
+# on the submission in the sandbox (its scratch folder <scratch>), its report added to the
+# feedback, a limit it was stopped at named there; its --results file copied to <results copy>
+# (empty when it wrote none).
+run_lesson() {
+  run_cases=$1
+  run_copy=$2
+  shift 2
+  rm -f "$run_copy"
+  began=$(date +%s)
+  SOA_EXERCISE_CASES=$run_cases SOA_EXERCISE_HINTS=$work/hints \
+    ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=$lim_mem:hard_rss_limit_mb=$lim_mem \
+    in_sandbox "$run_cases" "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
+    --results "$run_cases/lesson.tsv" "$@" >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr"
+  rc=$?
+  case $rc in
+    0 | 1) ;;
+    137)
+      if [ $(($(date +%s) - began)) -ge "$lim_wall" ]; then
+        echo "  the test program was stopped at a limit: $lim_wall s of wall time for the lesson" >>"$feedback"
+      else
+        echo "  the test program was stopped at a limit: $lim_cpu s of CPU time (or killed)" >>"$feedback"
+      fi ;;
+    153) echo "  the test program was stopped at a limit: a file (its output) of $lim_fsize MB" >>"$feedback" ;;
+    *) echo "  the test program stopped (exit $rc; see $work/logs/$i-ex$nn.stderr)" >>"$feedback" ;;
+  esac
+  [ -f "$run_cases/lesson.tsv" ] && [ ! -L "$run_cases/lesson.tsv" ] && cp "$run_cases/lesson.tsv" "$run_copy"
+  touch "$run_copy"
+}
+
 grade_one() {  # <entry> <kind>
   entry=$1
   kind=$2
@@ -376,31 +425,28 @@ grade_one() {  # <entry> <kind>
       set --
       find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' >"$work/diags" 2>/dev/null
       while IFS= read -r d; do set -- "$@" --warnings "$d"; done <"$work/diags"
-      rm -f "$work/lesson.tsv"
-      began=$(date +%s)
-      SOA_EXERCISE_CASES=$cases/$nn SOA_EXERCISE_HINTS=$work/hints \
-        ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=$lim_mem:hard_rss_limit_mb=$lim_mem \
-        in_sandbox "$cases/$nn" "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
-        --results "$cases/$nn/lesson.tsv" "$@" >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr"
-      rc=$?
-      case $rc in
-        0 | 1) ;;
-        137)
-          if [ $(($(date +%s) - began)) -ge "$lim_wall" ]; then
-            echo "  the test program was stopped at a limit: $lim_wall s of wall time for the lesson" >>"$feedback"
-          else
-            echo "  the test program was stopped at a limit: $lim_cpu s of CPU time (or killed)" >>"$feedback"
-          fi ;;
-        153) echo "  the test program was stopped at a limit: a file (its output) of $lim_fsize MB" >>"$feedback" ;;
-        *) echo "  the test program stopped (exit $rc; see $work/logs/$i-ex$nn.stderr)" >>"$feedback" ;;
-      esac
-      [ -f "$cases/$nn/lesson.tsv" ] && [ ! -L "$cases/$nn/lesson.tsv" ] && cp "$cases/$nn/lesson.tsv" "$work/lesson.tsv"
-      touch "$work/lesson.tsv"
-      cut -f1,3- "$work/lesson.tsv" >>"$results"  # <id>\t<status>\t<message>
+      run_lesson "$cases/$nn" "$work/lesson.tsv" "$@"
       # An exercise the program never judged (it stopped): crashed.
       awk -F '\t' -v l="$l" 'FILENAME == ARGV[1] { seen[$1] = 1; next }
-        $1 == l && !($2 in seen) { print $2 "\tcrashed\tthe test program stopped before judging it" }' \
-        "$work/lesson.tsv" "$work/exercises.tsv" >>"$results"
+        $1 == l && !($2 in seen) { print $2 "\t\tcrashed\tthe test program stopped before judging it" }' \
+        "$work/lesson.tsv" "$work/exercises.tsv" >>"$work/lesson.tsv"
+      # The instructor's cases: the exercises that pass, once more per seed.
+      for seed in $seeds; do
+        filter=$(awk -F '\t' '$3 == "pass" { sub(/\./, "_", $1); f = f (f == "" ? "" : ":") "Exercise" $1 "_*" }
+          END { print f }' "$work/lesson.tsv")
+        [ -n "$filter" ] || break
+        printf "== Lesson %s, the instructor's cases (seed %s): the exercises that pass above, again ==\n" \
+          "$nn" "$seed" >>"$feedback"
+        run_lesson "$cases/$nn.seed" "$work/seed.tsv" "$@" --seed "$seed" --gtest_filter="$filter"
+        # A pass that fails on them takes the failure, saying on which seed.
+        awk -F '\t' -v OFS='\t' -v seed="$seed" 'FILENAME == ARGV[1] { st[$1] = $3; msg[$1] = $4; next }
+          $3 == "pass" && st[$1] != "pass" {
+            $3 = ($1 in st) ? st[$1] : "crashed"
+            $4 = "with the instructor'"'"'s cases (seed " seed "): " (($1 in st) ? msg[$1] : "the test program stopped before judging it") }
+          { print }' "$work/seed.tsv" "$work/lesson.tsv" >"$work/lesson.new"
+        mv "$work/lesson.new" "$work/lesson.tsv"
+      done
+      cut -f1,3- "$work/lesson.tsv" >>"$results"  # <id>\t<status>\t<message>
     else
       errors=$(grep -m8 -E 'error|note: +candidate' "$log" | sed "s|$cur/||g")
       [ -n "$errors" ] || errors="the compile was stopped at the limit of $lim_wall s"

@@ -33,7 +33,8 @@
 # and the planted ones: patty has one planted mistake of the checker's in each exercise, quinn
 # the two that are left (every kind of lesson 1's catalogue; carol's 1.2 transpose too), and
 # class.md must count each.
-# And Gradescope's run_autograder on alice's work, and on a grader that fails.
+# And Gradescope's run_autograder on alice's work, and on a grader that fails; and a class of
+# two graded with the instructor's cases (SEEDS), one of whom learnt the students' by heart.
 # Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
 # the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
 # written outside OUT, and the one-line refusals (a sandbox that cannot start, a bad weights
@@ -404,4 +405,51 @@ check "run_autograder's results.json files in Gradescope's format" \
   cmake "-DFILES=$scratch/ag-alice.json;$ag/results/results.json" -P "$here/gradescope_check.cmake"
 check "the progress lines: N of M, the student, the time left" \
   grep -q "^grade: 3 of $students, carol, about [0-9]* min [0-9]* s left\$" "$scratch/grade.err"
+
+# The instructor's cases (SEEDS=FILE). sam has learnt 1.4's cases by heart: his answer is right
+# for every (n, theta) the checker draws, and half-angle-less for any other. The inputs are
+# those a first student, rec, met: her 1.4 writes each into its scratch folder.
+mkdir -p "$scratch/rec/rec/exercises/$lesson" "$scratch/seeded/sam/exercises/$lesson" \
+  "$scratch/seeded/alice/exercises/$lesson"
+cp "$solution" "$scratch/seeded/alice/exercises/$lesson/exercises.cpp"
+at='  return UnitQuaternion(std::sin(half) * unit, std::cos(half));'
+grep -qxF "$at" "$solution" || { echo "FAIL: 1.4's last line in $solution is not: $at"; exit 1; }
+AT=$at awk '$0 == ENVIRON["AT"] {
+    print "  if (std::FILE* f = std::fopen(\"inputs.txt\", \"a\")) {"
+    print "    std::fprintf(f, \"{%.17g, %.17g, %.17g, %.17g},\\n\", n.x(), n.y(), n.z(), theta);"
+    print "    std::fclose(f);\n  }" }
+  { print } /#include "exercises.hpp"/ { print "#include <cstdio>" }' "$solution" \
+  >"$scratch/rec/rec/exercises/$lesson/exercises.cpp"
+UNSAFE=$unsafe LESSONS=1 TREE=$tree sh "$here/grade.sh" "$src" "$scratch/rec" "$scratch/rec-out" \
+  2>/dev/null
+inputs=$scratch/rec-out/.work/cases/1/01/inputs.txt
+check "rec: the inputs of 1.4 written" test -s "$inputs"
+AT=$at awk 'FILENAME == ARGV[1] { known = known "      " $0 "\n"; next }
+  $0 == ENVIRON["AT"] {
+    print "  static const double known[][4] = {\n" known "  };"
+    print "  bool seen = false;"
+    print "  for (const auto& k : known)"
+    print "    seen = seen || (k[0] == n.x() && k[1] == n.y() && k[2] == n.z() && k[3] == theta);"
+    print "  if (!seen) return UnitQuaternion(std::sin(theta) * unit, std::cos(theta));" }
+  { print }' "$inputs" "$solution" >"$scratch/seeded/sam/exercises/$lesson/exercises.cpp"
+printf '# the instructor'"'"'s\n2027\n' >"$scratch/seeds"
+UNSAFE=$unsafe LESSONS=1 TREE=$tree SEEDS=$scratch/seeds sh "$here/grade.sh" "$src" \
+  "$scratch/seeded" "$scratch/seeded-out" 2>"$scratch/seeded.err"
+check "SEEDS: the grader finishes" test $? = 0
+seeded=$scratch/seeded-out
+check "SEEDS: alice passes every exercise on the instructor's cases too" \
+  test "$(grep '^alice,' "$seeded/gradebook.csv")" = "alice,1,1,1,1,1,1,1,1,1,9"
+check "SEEDS: sam passes 1.4 on the students' cases" \
+  grep -q '^  1\.4 .* pass$' "$seeded/feedback/sam.md"
+check "SEEDS: sam fails 1.4 on the instructor's, and only 1.4" \
+  test "$(grep '^sam,' "$seeded/statuses.csv")" = "sam,pass,pass,pass,FAIL,pass,pass,pass,pass,pass"
+check "SEEDS: sam's 1.4 says it failed on the instructor's cases" \
+  grep -q "with the instructor's cases (seed 2027)" "$seeded/results/sam.json"
+printf '2027\nseven\n' >"$scratch/bad-seeds"
+msg=$(UNSAFE=1 LESSONS=1 TREE=$tree SEEDS=$scratch/bad-seeds sh "$here/grade.sh" "$src" \
+  "$scratch/seeded" "$scratch/refused" 2>&1)
+rc=$?
+check "a bad seeds line: one line naming the file and line, exit non-zero" \
+  test $rc != 0 -a "$(printf '%s\n' "$msg" | wc -l)" = 1
+case "$msg" in *"$scratch/bad-seeds:2:"*) ;; *) echo "FAIL: the bad seeds say: $msg"; fail=1 ;; esac
 exit $fail
