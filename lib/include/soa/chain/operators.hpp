@@ -40,8 +40,9 @@ struct OperatorsT {
   VecX<S> bias() const;
 };
 
-// Defined out of the class, not inline: the library compiles them once for each precision
-// (soa/instantiations.hpp), and a program, which declares them extern, does not again.
+// The members are defined out of the class, not inline: the library compiles them once for
+// each precision (soa/instantiations.hpp), and the programs, which declare them extern, do
+// not compile them again.
 
 template <class S>
 OperatorsT<S> OperatorsT<S>::build(const ModelT<S>& m, const StateT<S>& x,
