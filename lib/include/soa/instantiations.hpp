@@ -100,6 +100,9 @@
   PREFIX template void retract<S>(const ModelT<S>&, const VecX<S>&, const VecX<S>&, VecX<S>&);   \
   PREFIX template class ChainSystemT<S>;                                                         \
   PREFIX template class StepperT<S>;                                                             \
+  PREFIX template struct RadauIIA<S>;                                                            \
+  PREFIX template class DominantEigenvalueT<S>;                                                  \
+  PREFIX template S stiffness_estimate<S>(StepperT<S>&, int, S, const StateT<S>&);               \
   PREFIX template SimulationSummary detail::simulate_observed<S>(                                \
       ChainSystemT<S>&, StateT<S>&, const SimulationOptionsT<S>&, const SimulationObserverT<S>&);
 #define SOA_TEMPLATES(PREFIX, S) \

@@ -103,76 +103,33 @@ class ChainSystemT {
   /// \f$\dot\beta\f$ at time \p t and state \p x: forward dynamics with the lean
   /// storage (ForwardDynamicsT::lean(); a simulation reads no per-body quantity, and the
   /// result is the same bit for bit), which keeps a long chain's pass in cache.
-  void acceleration(S t, const StateT<S>& x, VecX<S>& beta_dot) {
-    ++evaluations_;
-    if (control_) control_(t, x, T_);
-    forward_dynamics(m_, x, T_, f_ext_, ws_, fd_, beta_dot);
-  }
+  void acceleration(S t, const StateT<S>& x, VecX<S>& beta_dot);
 
   /// The canonical momentum \f$p = \partial T/\partial\beta = \mathcal M(\theta)\beta\f$
   /// (soa::kinetic_gradient(), O(N)); hinges whose coordinates add only.
-  void momentum(const StateT<S>& x, VecX<S>& p) {
-    p.resize(m_.nv());
-    kinetic_gradient(m_, x, ws_, p, Q_);
-  }
+  void momentum(const StateT<S>& x, VecX<S>& p);
 
   /// \f$\beta = \mathcal M^{-1}(\theta)\,p\f$ at the configuration \p x.theta
   /// (soa::mass_matrix_inverse_times(), O(N)); counted as an evaluation.
-  void velocity(const StateT<S>& x, const VecX<S>& p, VecX<S>& beta) {
-    ++evaluations_;
-    beta.resize(m_.nv());
-    mass_matrix_inverse_times(m_, x, p, ws_, fd_full_, beta);
-  }
+  void velocity(const StateT<S>& x, const VecX<S>& p, VecX<S>& beta);
 
   /// The generalized forces \f$Q(t,\theta,\beta)\f$, everything but the inertia:
   /// \f$Q = -T_{\rm ID}(\theta, \beta = 0, \dot\beta = 0) - c\,\beta + T(t, x)\f$, where the
   /// inverse dynamics at rest (soa::inverse_dynamics()) is the hinge force that holds the
   /// chain against gravity, the springs and the external forces, \f$c\f$ the dampers and
   /// \f$T\f$ the control law. O(N).
-  void generalized_force(S t, const StateT<S>& x, VecX<S>& Q) {
-    rest_.theta = x.theta;
-    Q.resize(m_.nv());
-    inverse_dynamics(m_, rest_, zero_, f_ext_, ws_, Q);
-    Q = -Q;
-    for (const BodyT<S>& B : m_.bodies())
-      if (B.damping != S(0))
-        Q.segment(B.v_offset, B.hinge.nv()) -= B.damping * x.beta.segment(B.v_offset, B.hinge.nv());
-    if (control_) {
-      control_(t, x, T_);
-      Q += T_;
-    }
-  }
+  void generalized_force(S t, const StateT<S>& x, VecX<S>& Q);
 
   /// The rate of the canonical momentum (Lagrange's equations, \f$L = T - U\f$, the
   /// potential \f$U\f$ and the non-conservative forces in \f$Q\f$):
   /// \f$\dot p = \partial T/\partial\theta\,(\theta, \beta) + Q(t, \theta, \beta)\f$
   /// (soa::kinetic_gradient(), generalized_force()). O(N); hinges whose coordinates add only.
-  void momentum_rate(S t, const StateT<S>& x, VecX<S>& p_dot) {
-    p_dot.resize(m_.nv());
-    kinetic_gradient(m_, x, ws_, p_, p_dot);
-    generalized_force(t, x, Q_);
-    p_dot += Q_;
-  }
+  void momentum_rate(S t, const StateT<S>& x, VecX<S>& p_dot);
 
   /// The total energy: kinetic \f$\tfrac12\sum_k V^*(k) M(k) V(k)\f$, the potential of
   /// gravity \f$-\sum_k m_k\, g \cdot p_{C_k}\f$ and of the joint springs \f$\tfrac12 k
   /// |\delta|^2\f$ (\f$\delta\f$ as in BodyT; the spring force is its negative gradient).
-  S energy(const StateT<S>& x) {
-    update_phi(m_, x.theta, ws_);
-    update_poses(m_, ws_);
-    update_velocities(m_, x, ws_);
-    S E = S(0);
-    for (int k = 1; k <= m_.n(); ++k) {
-      const BodyT<S>& B = m_.body(k);
-      E += B.M.kinetic_energy(ws_.V[k - 1]);
-      if (m_.has_gravity()) {
-        const PoseT<S>& T = ws_.pose[k - 1];
-        E -= m_.gravity.dot(B.M.mass() * T.l() + T.R() * B.M.h());
-      }
-      if (B.stiffness != S(0)) E += B.stiffness * spring_displacement_squared(B, x.theta);
-    }
-    return E;
-  }
+  S energy(const StateT<S>& x);
 
  private:
   // |delta|^2 / 2 of the spring of body B.
@@ -202,6 +159,71 @@ class ChainSystemT {
   VecX<S> zero_, p_, Q_;  // beta_dot = 0; momentum_rate()'s p and Q
   long evaluations_ = 0;
 };
+
+// The members are defined out of the class, not inline: the library compiles them once
+// (soa/instantiations.hpp), and the programs, which declare them extern, do not compile them
+// again.
+
+template <class S>
+void ChainSystemT<S>::acceleration(S t, const StateT<S>& x, VecX<S>& beta_dot) {
+  ++evaluations_;
+  if (control_) control_(t, x, T_);
+  forward_dynamics(m_, x, T_, f_ext_, ws_, fd_, beta_dot);
+}
+
+template <class S>
+void ChainSystemT<S>::momentum(const StateT<S>& x, VecX<S>& p) {
+  p.resize(m_.nv());
+  kinetic_gradient(m_, x, ws_, p, Q_);
+}
+
+template <class S>
+void ChainSystemT<S>::velocity(const StateT<S>& x, const VecX<S>& p, VecX<S>& beta) {
+  ++evaluations_;
+  beta.resize(m_.nv());
+  mass_matrix_inverse_times(m_, x, p, ws_, fd_full_, beta);
+}
+
+template <class S>
+void ChainSystemT<S>::generalized_force(S t, const StateT<S>& x, VecX<S>& Q) {
+  rest_.theta = x.theta;
+  Q.resize(m_.nv());
+  inverse_dynamics(m_, rest_, zero_, f_ext_, ws_, Q);
+  Q = -Q;
+  for (const BodyT<S>& B : m_.bodies())
+    if (B.damping != S(0))
+      Q.segment(B.v_offset, B.hinge.nv()) -= B.damping * x.beta.segment(B.v_offset, B.hinge.nv());
+  if (control_) {
+    control_(t, x, T_);
+    Q += T_;
+  }
+}
+
+template <class S>
+void ChainSystemT<S>::momentum_rate(S t, const StateT<S>& x, VecX<S>& p_dot) {
+  p_dot.resize(m_.nv());
+  kinetic_gradient(m_, x, ws_, p_, p_dot);
+  generalized_force(t, x, Q_);
+  p_dot += Q_;
+}
+
+template <class S>
+S ChainSystemT<S>::energy(const StateT<S>& x) {
+  update_phi(m_, x.theta, ws_);
+  update_poses(m_, ws_);
+  update_velocities(m_, x, ws_);
+  S E = S(0);
+  for (int k = 1; k <= m_.n(); ++k) {
+    const BodyT<S>& B = m_.body(k);
+    E += B.M.kinetic_energy(ws_.V[k - 1]);
+    if (m_.has_gravity()) {
+      const PoseT<S>& T = ws_.pose[k - 1];
+      E -= m_.gravity.dot(B.M.mass() * T.l() + T.R() * B.M.h());
+    }
+    if (B.stiffness != S(0)) E += B.stiffness * spring_displacement_squared(B, x.theta);
+  }
+  return E;
+}
 using ChainSystem = ChainSystemT<double>;
 
 }  // namespace soa

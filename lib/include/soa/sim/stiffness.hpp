@@ -120,57 +120,7 @@ class DominantEigenvalueT {
 
   /// \f$\lambda\f$ at \p t, \p x by \p steps Arnoldi steps (at most kMaxSteps) from the
   /// kept vector (the constructor's random one at first).
-  std::complex<double> operator()(StepperT<S>& stepper, S t, const StateT<S>& x, int steps) {
-    if (n2_ == 0) return 0;
-    const int k_max = std::min({steps, kMaxSteps, n2_});
-    w_.setZero();
-    stepper.rate_at(t, x, w_, F0_);
-    H_.setZero();
-    V_.col(0) = d_;
-    int k = 0;
-    const S delta = std::sqrt(eps<S>());
-    while (k < k_max) {
-      w_ = delta * V_.col(k);
-      stepper.rate_at(t, x, w_, w_);
-      w_ = (w_ - F0_) / delta;
-      if (!w_.allFinite()) break;
-      const double size = double(w_.norm());
-      for (int i = 0; i <= k; ++i) {  // modified Gram-Schmidt
-        H_(i, k) = double(V_.col(i).dot(w_));
-        w_ -= S(H_(i, k)) * V_.col(i);
-      }
-      H_(k + 1, k) = double(w_.norm());
-      ++k;
-      // J maps the Krylov space into itself (to rounding): its eigenvalues are exact.
-      if (!(H_(k, k - 1) > 1e-10 * size) || k == k_max) break;
-      V_.col(k) = w_ / S(H_(k, k - 1));
-    }
-    if (k == 0) return 0;
-    Hk_ = H_.topLeftCorner(k, k);
-    es_.compute(Hk_, true);
-    // The largest modulus; of values within 1 % of it (+-lambda of a growing mode, a pair),
-    // the one of largest real part, the one a step amplifies most.
-    const auto& ev = es_.eigenvalues();
-    double largest = 0;
-    for (int i = 0; i < k; ++i) largest = std::max(largest, std::abs(ev[i]));
-    int top = -1;
-    for (int i = 0; i < k; ++i)
-      if (std::abs(ev[i]) >= 0.99 * largest && (top < 0 || ev[i].real() > ev[top].real())) top = i;
-    // The next start: the dominant Ritz vector V_k s, real and imaginary parts summed.
-    // A vector of its own: eigenvectors() returns a matrix by value, and a column of it (a
-    // block, as `auto` would keep) would outlive it.
-    const Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 0, kMaxSteps, 1> s =
-        es_.eigenvectors().col(top);
-    d_.setZero();
-    for (int i = 0; i < k; ++i) d_ += S(s[i].real() + s[i].imag()) * V_.col(i);
-    const S norm = d_.norm();
-    if (norm > S(0) && d_.allFinite()) {
-      d_ /= norm;
-    } else {
-      d_ = V_.col(0);
-    }
-    return ev[top];
-  }
+  std::complex<double> operator()(StepperT<S>& stepper, S t, const StateT<S>& x, int steps);
 
  private:
   using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxSteps + 1, kMaxSteps>;
@@ -182,6 +132,64 @@ class DominantEigenvalueT {
   Square Hk_;
   Eigen::EigenSolver<Square> es_;
 };
+
+// The members are defined out of the class, not inline: the library compiles them once
+// (soa/instantiations.hpp), and the programs, which declare them extern, do not compile them
+// again.
+
+template <class S>
+std::complex<double> DominantEigenvalueT<S>::operator()(StepperT<S>& stepper, S t,
+                                                        const StateT<S>& x, int steps) {
+  if (n2_ == 0) return 0;
+  const int k_max = std::min({steps, kMaxSteps, n2_});
+  w_.setZero();
+  stepper.rate_at(t, x, w_, F0_);
+  H_.setZero();
+  V_.col(0) = d_;
+  int k = 0;
+  const S delta = std::sqrt(eps<S>());
+  while (k < k_max) {
+    w_ = delta * V_.col(k);
+    stepper.rate_at(t, x, w_, w_);
+    w_ = (w_ - F0_) / delta;
+    if (!w_.allFinite()) break;
+    const double size = double(w_.norm());
+    for (int i = 0; i <= k; ++i) {  // modified Gram-Schmidt
+      H_(i, k) = double(V_.col(i).dot(w_));
+      w_ -= S(H_(i, k)) * V_.col(i);
+    }
+    H_(k + 1, k) = double(w_.norm());
+    ++k;
+    // J maps the Krylov space into itself (to rounding): its eigenvalues are exact.
+    if (!(H_(k, k - 1) > 1e-10 * size) || k == k_max) break;
+    V_.col(k) = w_ / S(H_(k, k - 1));
+  }
+  if (k == 0) return 0;
+  Hk_ = H_.topLeftCorner(k, k);
+  es_.compute(Hk_, true);
+  // The largest modulus; of values within 1 % of it (+-lambda of a growing mode, a pair),
+  // the one of largest real part, the one a step amplifies most.
+  const auto& ev = es_.eigenvalues();
+  double largest = 0;
+  for (int i = 0; i < k; ++i) largest = std::max(largest, std::abs(ev[i]));
+  int top = -1;
+  for (int i = 0; i < k; ++i)
+    if (std::abs(ev[i]) >= 0.99 * largest && (top < 0 || ev[i].real() > ev[top].real())) top = i;
+  // The next start: the dominant Ritz vector V_k s, real and imaginary parts summed.
+  // A vector of its own: eigenvectors() returns a matrix by value, and a column of it (a
+  // block, as `auto` would keep) would outlive it.
+  const Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 0, kMaxSteps, 1> s =
+      es_.eigenvectors().col(top);
+  d_.setZero();
+  for (int i = 0; i < k; ++i) d_ += S(s[i].real() + s[i].imag()) * V_.col(i);
+  const S norm = d_.norm();
+  if (norm > S(0) && d_.allFinite()) {
+    d_ /= norm;
+  } else {
+    d_ = V_.col(0);
+  }
+  return ev[top];
+}
 
 /// An estimate of \f$\max|\lambda|\f$ of the Jacobian of the rate at \p x: 24 Arnoldi steps
 /// of DominantEigenvalueT from a fixed random vector (25 rate evaluations). With the step h,
