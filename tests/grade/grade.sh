@@ -40,9 +40,8 @@
 # cannot write what root owns. Under limits: CPU time, wall time, processes, file size, and
 # (AddressSanitizer's) memory, each named in the feedback when a run reaches it. Where the
 # sandbox cannot start, the grader stops saying why; UNSAFE=1 runs without it (trusted
-# submissions, or a container of their own as on Gradescope). Not yet: the compiles of a
-# submission run under the limits but outside the sandbox (an #include or .incbin can read a
-# file the instructor can).
+# submissions, or a container of their own as on Gradescope). A submission's compiles run in
+# the same sandbox, as the same user: an #include or .incbin reads only what the runs see.
 #
 # The instructor's cases: SEEDS=FILE, a seed a line (a positive whole number; # starts a
 # comment), kept out of the students' reach (the file is yours, not the project's). Each
@@ -107,19 +106,19 @@ else
     --tmpfs /tmp true 2>&1) ||
     die "the sandbox cannot start: bwrap: $(printf '%s' "$why" | head -1) (user namespaces disabled?); UNSAFE=1 grades without it, for trusted submissions only"
 fi
-# in_sandbox <scratch> <command...>: the command under the limits, in the sandbox unless
-# UNSAFE=1, with <scratch> (made here, empty) its working folder and the only one it can
-# write. Exit 137 (killed) when a time limit is reached.
-in_sandbox() {
-  scratch=$1
-  shift
-  rm -rf "${scratch:?}"
-  mkdir -p "$scratch"
+# sandboxed <folder> <read-only folders> <command...>: the command under the limits, in the
+# sandbox unless UNSAFE=1, in <folder>, the only one it can write besides its private /tmp; it
+# sees / read-only, but for the hidden folders (the home folder, the project's build/ and
+# solutions/, OUT and SUBMISSIONS), which are empty, and in them only <folder> and the
+# <read-only folders> (one a line). Exit 137 (killed) when a time limit is reached.
+sandboxed() {
+  rw=$1
+  ro=$2
+  shift 2
   limits="prlimit --cpu=$lim_cpu --fsize=$((lim_fsize << 20)) --core=0"
-  [ -z "$drop" ] || chown 65534:65534 "$scratch"
   if [ $sandbox = none ]; then
     # shellcheck disable=SC2086
-    (cd "$scratch" && timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc "$@")
+    (cd "$rw" && timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc "$@")
     return
   fi
   # bwrap's options are put before the command last to first. The hidden folders (those not
@@ -128,13 +127,13 @@ in_sandbox() {
   hidden=$(for d in "${HOME:-/}" "$src/build" "$src/solutions" "$out" "$subs"; do
     [ "$d" = / ] || [ ! -d "$d" ] || printf '%s\n' "$d"; done | sort -u |
     awk '{ for (k = 1; k <= n; k++) if (index($0 "/", top[k] "/") == 1) next; top[++n] = $0; print }')
-  set -- --chdir "$scratch" -- "$@"
+  set -- --chdir "$rw" -- "$@"
   old_ifs=$IFS
   IFS='
 '
   for d in $hidden; do set -- --remount-ro "$d" "$@"; done
-  set -- --ro-bind "$tree" "$tree" --ro-bind "$work/hints" "$work/hints" \
-    --bind "$scratch" "$scratch" "$@"
+  set -- --bind "$rw" "$rw" "$@"
+  for d in $ro; do set -- --ro-bind "$d" "$d" "$@"; done
   for d in $hidden; do
     case "$src/" in "$d"/*) ;; *) set -- --tmpfs "$d" "$@" ;; esac
   done
@@ -147,6 +146,30 @@ in_sandbox() {
   timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc bwrap --unshare-all \
     --die-with-parent --new-session --ro-bind / / --proc /proc --dev /dev \
     --size $((lim_fsize << 20)) --tmpfs /tmp "$@"
+}
+
+# in_sandbox <scratch> <command...>: a run of student code, sandboxed() with <scratch> (made
+# here, empty) its working folder, the exercise tree and the hints read-only.
+in_sandbox() {
+  scratch=$1
+  shift
+  rm -rf "${scratch:?}"
+  mkdir -p "$scratch"
+  [ -z "$drop" ] || chown 65534:65534 "$scratch"
+  sandboxed "$scratch" "$tree
+$work/hints" "$@"
+}
+
+# build_in_sandbox <command...>: a compile of student code, sandboxed() in the exercise tree
+# (written by nobody when run as root: the tree is nobody's once the checkers are built), the
+# student's files read-only; an #include or .incbin reads only what the runs can. No ccache:
+# its cache is in the hidden home folder. With UNSAFE=1, under the time limit only, as you.
+build_in_sandbox() {
+  if [ $sandbox = none ]; then
+    timeout -s KILL "$lim_wall" "$@"
+    return
+  fi
+  CCACHE_DISABLE=1 sandboxed "$tree" "$cur" "$@"
 }
 
 # The lessons graded: NN-topic folders of the project.
@@ -268,6 +291,9 @@ for l in $lessons; do targets="$targets ex$(echo "$l" | cut -c1-2)-tests"; done
 # shellcheck disable=SC2086
 cmake --build "$tree" -j "$jobs" --target $targets >"$work/logs/checkers.log" 2>&1 ||
   die "the library or a checker does not compile (see $work/logs/checkers.log)"
+if [ -n "$drop" ] && [ $sandbox = bwrap ]; then
+  chown -R 65534:65534 "$tree" || die "$tree: cannot be given to the user nobody (chown)"
+fi
 built=$(($(date +%s) - built))
 
 # --- one submission ---------------------------------------------------------------------------
@@ -420,7 +446,7 @@ grade_one() {  # <entry> <kind>
     rm -f "$prog"
     find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' -exec rm -f {} + 2>/dev/null
     echo "== Lesson $nn exercises (exercises/$l) ==" >>"$feedback"
-    if timeout -s KILL "$lim_wall" cmake --build "$tree" -j "$jobs" --target "ex$nn-exercises" \
+    if build_in_sandbox cmake --build "$tree" -j "$jobs" --target "ex$nn-exercises" \
       >"$log" 2>&1; then
       set --
       find "$tree/exercises/CMakeFiles/exercises_$nn.dir" -name '*.diag' >"$work/diags" 2>/dev/null

@@ -30,15 +30,18 @@
 #   nick         defines main: does not compile (the runner has its own)
 #   olga         1.1 wrong, and strong definitions of the checker's Check::add and Check::fail
 #                (asm labels) that say "pass": does not compile, naming them
+#   uma          #includes the solutions file by its path, and /etc/shadow: does not compile
+#                (the compile is sandboxed too), neither file's text in her feedback
 # and the planted ones: patty has one planted mistake of the checker's in each exercise, quinn
 # the two that are left (every kind of lesson 1's catalogue; carol's 1.2 transpose too), and
 # class.md must count each.
 # And Gradescope's run_autograder on alice's work, and on a grader that fails; and a class of
-# two graded with the instructor's cases (SEEDS), one of whom learnt the students' by heart.
+# two graded with the instructor's cases (SEEDS), one of whom learnt the students' by heart,
+# and he again through run_autograder with the seeds.
 # Then: the gradebook's rows (with WEIGHTS: 1.2 counts 3), the statuses, class.md's counts,
 # the feedback, every results/*.json in Gradescope's format (gradescope_check.cmake), nothing
 # written outside OUT, and the one-line refusals (a sandbox that cannot start, a bad weights
-# line). heidi and ivan only where the sandbox starts: without it they would do what they try.
+# line). heidi, ivan and uma only where the sandbox starts: without it they would do what they try.
 #   grade_check.sh <source dir> <exercise tree> <scratch dir>
 set -u
 src=$1
@@ -169,6 +172,13 @@ static int tries() {
 }
 static const int tried = tries();" ""
 [ -z "$sandboxed" ] || hostile ivan "#include <unistd.h>" "  for (;;) fork();"
+# uma: her lesson 1 is the solutions file, #included by its path, and a second file #includes
+# /etc/shadow. The compile runs in the sandbox, which shows neither.
+if [ -n "$sandboxed" ]; then
+  mkdir -p "$subs/uma/exercises/$lesson"
+  printf '#include "%s"\n' "$solution" >"$subs/uma/exercises/$lesson/exercises.cpp"
+  printf '#include "/etc/shadow"\n' >"$subs/uma/exercises/$lesson/peek.cpp"
+fi
 # The checker's Check::add (each instantiation) and Check::fail, as its object file names them:
 # a student's definitions of these, through asm labels, answer "pass" for every comparison.
 checker_object=$(ls "$tree/tests/CMakeFiles/ex01-tests.dir/exercises/"*.o 2>/dev/null | head -1)
@@ -293,6 +303,7 @@ expect_row grace "grace,0,0,0,0,0,0,0,0,0,0"
 if [ -n "$sandboxed" ]; then
   expect_row heidi "heidi,1,3,1,1,1,1,1,1,1,11"
   expect_row ivan "ivan,0,3,1,1,1,1,1,1,1,10"
+  expect_row uma "uma,0,0,0,0,0,0,0,0,0,0"
 fi
 expect_row judy "judy,0,3,1,1,1,1,1,1,1,10"
 expect_row kevin "kevin,0,0,0,0,0,0,0,0,0,0"
@@ -319,7 +330,7 @@ expect_row patty "$(failing_row patty $patty)"
 # shellcheck disable=SC2086
 expect_row quinn "$(failing_row quinn $quinn)"
 students=16
-[ -z "$sandboxed" ] || students=18
+[ -z "$sandboxed" ] || students=19
 check "a row per student" test "$(wc -l <"$out/gradebook.csv")" = $((students + 1))
 srow() { grep "^$1," "$out/statuses.csv"; }
 check "bob: 1.5 to 1.9 not done" \
@@ -367,6 +378,11 @@ if [ -n "$sandboxed" ]; then
     test -z "$(grep -E '^ *(WROTE|READ /work|READ [^ ]*solutions|READ /etc/shadow|CONNECTED)' "$out/feedback/heidi.md")"
   check "heidi: no HACKED file anywhere" \
     test ! -e "$src/HACKED" -a ! -e "$out/HACKED" -a ! -e "$subs/HACKED" -a ! -e "$scratch/HACKED"
+  check "uma: does not compile, the solutions not found by her #include" \
+    sh -c 'test "$(grep "^uma," "$1" | cut -d, -f2)" = "does not compile" &&
+      grep -qF "$2: No such file or directory" "$3"' - "$out/statuses.csv" "$solution" "$out/feedback/uma.md"
+  check "uma: no line of /etc/shadow in her feedback" \
+    sh -c '! grep -qE "(^|[ :])(root|daemon|nobody):[^ :]*:[0-9]*:" "$1"' - "$out/feedback/uma.md"
 fi
 passed=4
 [ -z "$sandboxed" ] || passed=5
@@ -445,6 +461,16 @@ check "SEEDS: sam fails 1.4 on the instructor's, and only 1.4" \
   test "$(grep '^sam,' "$seeded/statuses.csv")" = "sam,pass,pass,pass,FAIL,pass,pass,pass,pass,pass"
 check "SEEDS: sam's 1.4 says it failed on the instructor's cases" \
   grep -q "with the instructor's cases (seed 2027)" "$seeded/results/sam.json"
+# Gradescope with the instructor's cases (SEEDS, which a seeds.txt in the autograder's source
+# stands for), on sam: his 1.4 fails on them.
+rm -rf "$ag/submission" "$ag/results"
+mkdir -p "$ag/submission"
+cp -R "$scratch/seeded/sam/exercises" "$ag/submission/"
+AUTOGRADER=$ag LESSONS=1 TREE=$tree SEEDS=$scratch/seeds \
+  sh "$src/tests/grade/gradescope/run_autograder" 2>/dev/null
+check "run_autograder with the instructor's seeds: sam's 1.4 fails on their cases (score 8)" \
+  sh -c 'grep -q "\"score\": 8," "$1" && grep -q "with the instructor.s cases (seed 2027)" "$1"' \
+  - "$ag/results/results.json"
 printf '2027\nseven\n' >"$scratch/bad-seeds"
 msg=$(UNSAFE=1 LESSONS=1 TREE=$tree SEEDS=$scratch/bad-seeds sh "$here/grade.sh" "$src" \
   "$scratch/seeded" "$scratch/refused" 2>&1)
