@@ -162,14 +162,16 @@ $work/hints" "$@"
 
 # build_in_sandbox <command...>: a compile of student code, sandboxed() in the exercise tree
 # (written by nobody when run as root: the tree is nobody's once the checkers are built), the
-# student's files read-only; an #include or .incbin reads only what the runs can. No ccache:
-# its cache is in the hidden home folder. With UNSAFE=1, under the time limit only, as you.
+# student's files read-only; an #include or .incbin reads only what the runs can. ccache's
+# cache is the tree's own (the one in your home folder is hidden): a file compiled before, a
+# stub of a lesson not done, is not compiled again. With UNSAFE=1, under the time limit only,
+# as you.
 build_in_sandbox() {
   if [ $sandbox = none ]; then
     timeout -s KILL "$lim_wall" "$@"
     return
   fi
-  CCACHE_DISABLE=1 sandboxed "$tree" "$cur" "$@"
+  CCACHE_DIR=$tree/.grade-ccache sandboxed "$tree" "$cur" "$@"
 }
 
 # The lessons graded: NN-topic folders of the project.
@@ -291,6 +293,7 @@ for l in $lessons; do targets="$targets ex$(echo "$l" | cut -c1-2)-tests"; done
 # shellcheck disable=SC2086
 cmake --build "$tree" -j "$jobs" --target $targets >"$work/logs/checkers.log" 2>&1 ||
   die "the library or a checker does not compile (see $work/logs/checkers.log)"
+mkdir -p "$tree/.grade-ccache"
 if [ -n "$drop" ] && [ $sandbox = bwrap ]; then
   chown -R 65534:65534 "$tree" || die "$tree: cannot be given to the user nobody (chown)"
 fi
