@@ -106,19 +106,21 @@ else
     --tmpfs /tmp true 2>&1) ||
     die "the sandbox cannot start: bwrap: $(printf '%s' "$why" | head -1) (user namespaces disabled?); UNSAFE=1 grades without it, for trusted submissions only"
 fi
-# sandboxed <folder> <read-only folders> <command...>: the command under the limits, in the
-# sandbox unless UNSAFE=1, in <folder>, the only one it can write besides its private /tmp; it
-# sees / read-only, but for the hidden folders (the home folder, the project's build/ and
-# solutions/, OUT and SUBMISSIONS), which are empty, and in them only <folder> and the
-# <read-only folders> (one a line). Exit 137 (killed) when a time limit is reached.
+# sandboxed <folders> <read-only folders> <command...>: the command under the limits, in the
+# sandbox unless UNSAFE=1, in the first of <folders> (one a line), the only ones it can write
+# besides its private /tmp; it sees / read-only, but for the hidden folders (the home folder,
+# the project's build/ and solutions/, OUT and SUBMISSIONS), which are empty, and in them only
+# <folders> and the <read-only folders> (one a line). Exit 137 (killed) when a time limit is
+# reached.
 sandboxed() {
   rw=$1
   ro=$2
   shift 2
+  here_rw=$(printf '%s\n' "$rw" | head -1)
   limits="prlimit --cpu=$lim_cpu --fsize=$((lim_fsize << 20)) --core=0"
   if [ $sandbox = none ]; then
     # shellcheck disable=SC2086
-    (cd "$rw" && timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc "$@")
+    (cd "$here_rw" && timeout -s KILL "$lim_wall" $drop $limits --nproc=$lim_nproc "$@")
     return
   fi
   # bwrap's options are put before the command last to first. The hidden folders (those not
@@ -127,12 +129,12 @@ sandboxed() {
   hidden=$(for d in "${HOME:-/}" "$src/build" "$src/solutions" "$out" "$subs"; do
     [ "$d" = / ] || [ ! -d "$d" ] || printf '%s\n' "$d"; done | sort -u |
     awk '{ for (k = 1; k <= n; k++) if (index($0 "/", top[k] "/") == 1) next; top[++n] = $0; print }')
-  set -- --chdir "$rw" -- "$@"
+  set -- --chdir "$here_rw" -- "$@"
   old_ifs=$IFS
   IFS='
 '
   for d in $hidden; do set -- --remount-ro "$d" "$@"; done
-  set -- --bind "$rw" "$rw" "$@"
+  for d in $rw; do set -- --bind "$d" "$d" "$@"; done
   for d in $ro; do set -- --ro-bind "$d" "$d" "$@"; done
   for d in $hidden; do
     case "$src/" in "$d"/*) ;; *) set -- --tmpfs "$d" "$@" ;; esac
@@ -163,15 +165,16 @@ $work/hints" "$@"
 # build_in_sandbox <command...>: a compile of student code, sandboxed() in the exercise tree
 # (written by nobody when run as root: the tree is nobody's once the checkers are built), the
 # student's files read-only; an #include or .incbin reads only what the runs can. ccache's
-# cache is the tree's own (the one in your home folder is hidden): a file compiled before, a
-# stub of a lesson not done, is not compiled again. With UNSAFE=1, under the time limit only,
-# as you.
+# cache is OUT/.work/ccache (yours, in your home folder, is hidden; the runs see neither): a
+# file compiled before, a stub of a lesson not done, is not compiled again. With UNSAFE=1,
+# under the time limit only, as you.
 build_in_sandbox() {
   if [ $sandbox = none ]; then
     timeout -s KILL "$lim_wall" "$@"
     return
   fi
-  CCACHE_DIR=$tree/.grade-ccache sandboxed "$tree" "$cur" "$@"
+  CCACHE_DIR=$work/ccache sandboxed "$tree
+$work/ccache" "$cur" "$@"
 }
 
 # The lessons graded: NN-topic folders of the project.
@@ -293,9 +296,12 @@ for l in $lessons; do targets="$targets ex$(echo "$l" | cut -c1-2)-tests"; done
 # shellcheck disable=SC2086
 cmake --build "$tree" -j "$jobs" --target $targets >"$work/logs/checkers.log" 2>&1 ||
   die "the library or a checker does not compile (see $work/logs/checkers.log)"
-mkdir -p "$tree/.grade-ccache"
-if [ -n "$drop" ] && [ $sandbox = bwrap ]; then
-  chown -R 65534:65534 "$tree" || die "$tree: cannot be given to the user nobody (chown)"
+if [ $sandbox = bwrap ]; then
+  mkdir -p "$work/ccache"
+  if [ -n "$drop" ]; then
+    chown -R 65534:65534 "$tree" "$work/ccache" ||
+      die "$tree: cannot be given to the user nobody (chown)"
+  fi
 fi
 built=$(($(date +%s) - built))
 

@@ -381,6 +381,8 @@ if [ -n "$sandboxed" ]; then
   check "uma: does not compile, the solutions not found by her #include" \
     sh -c 'test "$(grep "^uma," "$1" | cut -d, -f2)" = "does not compile" &&
       grep -qF "$2: No such file or directory" "$3"' - "$out/statuses.csv" "$solution" "$out/feedback/uma.md"
+  check "the sandboxed compiles keep their ccache in OUT/.work/ccache" \
+    test -n "$(find "$out/.work/ccache" -type f -name '*R' 2>/dev/null | head -1)"
   check "uma: no line of /etc/shadow in her feedback" \
     sh -c '! grep -qE "(^|[ :])(root|daemon|nobody):[^ :]*:[0-9]*:" "$1"' - "$out/feedback/uma.md"
 fi
