@@ -30,12 +30,20 @@
 //                       with backslash, newline and tab written \\, \n and \t, other control
 //                       characters as '?'. Written by this process, the parent of the
 //                       exercises' runs, into FILE.tmp then renamed. The student's code is
-//                       linked into this process too: what that leaves open is on the notes'
-//                       page "Instructors" (a result the student cannot forge).
+//                       linked into this process too: its results are make grade's first
+//                       run only (--record), the verdict is the judge's (--replay).
+//   --record DIR        with --report, each exercise's calls of the student's functions and
+//                       what they returned, in DIR/<exercise>.rec (a program linked with the
+//                       recorders: make exercises' and make grade's, which watch the calls)
+//   --replay DIR        with --report, in the judge (exNN-judge: the checker linked with no
+//                       student code): each call answered from DIR/<exercise>.rec; an exercise
+//                       whose record ends early or does not match the calls gets the status
+//                       "unjudged" (tests/support/recording.hpp)
 //   --seed N            every case drawn with N mixed into its seed (seed_salt() of
 //                       tests/support/property.hpp): cases the students' own runs never
 //                       draw, for an instructor's grading (make grade SEEDS=FILE)
 #include <execinfo.h>
+#include <fcntl.h>
 #include <fnmatch.h>
 #include <gtest/gtest.h>
 #include <sys/prctl.h>
@@ -58,6 +66,7 @@
 #include <vector>
 
 #include "property.hpp"
+#include "recording.hpp"
 
 namespace {
 
@@ -66,6 +75,7 @@ struct Row {
   bool not_done = false;
   bool forbidden = false;     ///< calls the library function the exercise reproduces
   std::string stopped;        ///< how the run stopped, as a --results status, or ""
+  bool unjudged = false;      ///< --replay: the record does not answer the checker's calls
   std::string first_failure;  ///< the failures' messages, each ending in a newline
   std::string notes;          ///< what the exercise printed, or a note on it
 };
@@ -223,7 +233,8 @@ class Table : public testing::EmptyTestEventListener {
       const std::string l = label(name);
       const std::string id = l.substr(0, l.find(' '));
       const auto w = warnings.find(id);
-      const std::string status = r.forbidden          ? "forbidden-call"
+      const std::string status = r.unjudged           ? "unjudged"
+                                 : r.forbidden        ? "forbidden-call"
                                  : !r.stopped.empty() ? r.stopped
                                  : !r.failed          ? "pass"
                                  : r.not_done         ? "not-done"
@@ -263,12 +274,22 @@ class Table : public testing::EmptyTestEventListener {
   int total() const { return int(rows_.size()); }
 
   // One row as text, from a child process to its parent:
-  // "<failed> <not done> <forbidden>\n<message>".
+  // "<failed> <not done> <forbidden> <unjudged>\n<message>".
   std::string serialize(const std::string& suite) const {
     const auto it = rows_.find(suite);
     if (it == rows_.end()) return "";
-    return std::to_string(int(it->second.failed)) + " " + std::to_string(int(it->second.not_done)) +
-           " " + std::to_string(int(it->second.forbidden)) + "\n" + it->second.first_failure;
+    const Row& r = it->second;
+    return std::to_string(int(r.failed)) + " " + std::to_string(int(r.not_done)) + " " +
+           std::to_string(int(r.forbidden)) + " " + std::to_string(int(r.unjudged)) + "\n" +
+           r.first_failure;
+  }
+  // --replay: the record could not answer the checker's calls; no verdict.
+  void unjudge(const std::string& suite, const std::string& why) {
+    Row& r = rows_[suite];
+    r.failed = true;
+    r.not_done = false;
+    r.unjudged = true;
+    r.first_failure = "not judged: " + why + "\n";
   }
   // A forbidden call fails the exercise whatever its numbers, and is said first.
   void forbid(const std::string& suite, const std::string& message) {
@@ -357,6 +378,9 @@ Frame parse_frame(const std::string& line) {
   }
   fn = fn.substr(0, fn.find('('));
   f.function = fn.substr(fn.rfind(' ') == std::string::npos ? 0 : fn.rfind(' ') + 1);
+  // The student's exercise functions are soa_student_<name> in the program (watch.cmake, for
+  // the recorders): the student knows them by <name>.
+  f.function = std::regex_replace(f.function, std::regex("::soa_student_"), "::");
   f.where = m[2].str();
   return f;
 }
@@ -546,8 +570,33 @@ std::string stopped_status(int status, const std::string& report) {
   return abbrev ? std::string("crashed:SIG") + abbrev : "crashed";
 }
 
+// --record DIR, --replay DIR: where each exercise's record is.
+struct Recording {
+  const char* record = nullptr;
+  const char* replay = nullptr;
+};
+
+// In the child process of one exercise: its record started, written or read at
+// <dir>/<exercise>.rec.
+void start_recording(const Recording& rec, const std::string& name) {
+  if (rec.record) {
+    const std::string path = std::string(rec.record) + "/" + name + ".rec";
+    const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd < 0) {
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), std::strerror(errno));
+      _exit(3);
+    }
+    soa::test::recording::start_recording(fd);
+  } else if (rec.replay) {
+    std::ifstream in(std::string(rec.replay) + "/" + name + ".rec", std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    soa::test::recording::start_replay(bytes.str());
+  }
+}
+
 // --report: every exercise (test suite) in a child process of its own, under Limits.
-void run_isolated(Table& table, const Limits& limits) {
+void run_isolated(Table& table, const Limits& limits, const Recording& rec) {
   const std::string filter = GTEST_FLAG_GET(filter);
   testing::UnitTest& unit = *testing::UnitTest::GetInstance();
   std::vector<std::string> suites;
@@ -579,9 +628,14 @@ void run_isolated(Table& table, const Limits& limits) {
       setrlimit(RLIMIT_FSIZE, &fsize);
       for (int sig : {SIGABRT, SIGSEGV, SIGFPE, SIGBUS, SIGILL}) std::signal(sig, on_fatal_signal);
       GTEST_FLAG_SET(filter, suite + ".*");
+      start_recording(rec, name);
       const int failed = RUN_ALL_TESTS();  // the row says it
       (void)failed;
       std::fflush(stdout);
+      if (rec.replay) {
+        const std::string why = soa::test::recording::replay_verdict();
+        if (!why.empty()) table.unjudge(suite, why);
+      }
       const std::string label = Table::label(suite);
       const std::string calls = forbidden_calls(label.substr(0, label.find(' ')));
       if (!calls.empty()) table.forbid(suite, calls);
@@ -613,6 +667,7 @@ void run_isolated(Table& table, const Limits& limits) {
       r.failed = row[0] == '1';
       r.not_done = row.size() > 2 && row[2] == '1';
       r.forbidden = row.size() > 4 && row[4] == '1';
+      r.unjudged = row.size() > 6 && row[6] == '1';
       r.first_failure = row.substr(std::min(row.size(), row.find('\n') + 1));
     } else {
       r.failed = true;
@@ -647,6 +702,7 @@ int main(int argc, char** argv) {
   bool report = false, expect_all_fail = false;
   const char* header = nullptr;
   const char* results = nullptr;
+  Recording rec;
   std::vector<std::string> warning_files;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
@@ -658,6 +714,10 @@ int main(int argc, char** argv) {
       warning_files.push_back(argv[++i]);
     else if (std::strcmp(argv[i], "--results") == 0 && i + 1 < argc)
       results = argv[++i];
+    else if (std::strcmp(argv[i], "--record") == 0 && i + 1 < argc)
+      rec.record = argv[++i];
+    else if (std::strcmp(argv[i], "--replay") == 0 && i + 1 < argc)
+      rec.replay = argv[++i];
     else if (std::strcmp(argv[i], "--expect-all-fail") == 0)
       expect_all_fail = true;
     else if (std::strcmp(argv[i], "--seed") == 0 && i + 1 < argc) {
@@ -670,6 +730,10 @@ int main(int argc, char** argv) {
       soa::test::seed_salt() = seed;
     } else
       args.push_back(argv[i]);
+  }
+  if ((rec.record || rec.replay) && !report) {
+    std::fprintf(stderr, "--record and --replay need --report\n");
+    return 2;
   }
   int n = int(args.size());
   args.push_back(nullptr);  // argv[argc] is null: gtest shifts the arguments it takes
@@ -687,7 +751,7 @@ int main(int argc, char** argv) {
     limits.seconds = std::atoi(t);
   int rc = 0;
   if (report)
-    run_isolated(*table, limits);
+    run_isolated(*table, limits, rec);
   else
     rc = RUN_ALL_TESTS();
   const Statements statements = read_statements(header);

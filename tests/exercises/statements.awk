@@ -1,11 +1,13 @@
 # The exercise statements of a lesson (exercises/NN-topic/exercises.hpp), one line each:
-#   id TAB function TAB level TAB title TAB forbidden TAB voids TAB declaration
+#   id TAB function TAB level TAB title TAB forbidden TAB voids TAB declaration TAB outs
 # id "5.1"; level "1, 15 min, uses 5.1" (from "*Level 1 of 3, about 15 min; uses 5.1.*");
 # title the bold title without "Exercise N.K: "; forbidden the soa:: names of its "Do not
 # call" sentence, comma separated; voids "(void)a, (void)b;" for its parameters; declaration
-# the function's declaration as written, its lines joined by "\001", without the ";".
-# Read by tests/exercises/stubs.sh (make stubs, ctest exercises.stubs).
-function flush(   t, i, meta, low, s, name, decl1, params, depth, c, p, n, voids, word) {
+# the function's declaration as written, its lines joined by "\001", without the ";"; outs
+# the parameters it writes (non-const references), comma separated.
+# Read by tests/exercises/stubs.sh (make stubs, ctest exercises.stubs) and
+# tests/exercises/recording.sh (make grade's recorders and replayers).
+function flush(   t, i, meta, low, s, name, decl1, params, depth, c, p, n, voids, word, outs) {
   if (id == "") return
   t = doc
   i = index(t, "**Exercise " id)
@@ -51,6 +53,7 @@ function flush(   t, i, meta, low, s, name, decl1, params, depth, c, p, n, voids
   n = 0
   p = ""
   voids = ""
+  outs = ""
   for (c = 1; c <= length(params); c++) {
     ch = substr(params, c, 1)
     if (ch == "(" || ch == "<" || ch == "{") depth++
@@ -61,6 +64,8 @@ function flush(   t, i, meta, low, s, name, decl1, params, depth, c, p, n, voids
         word = substr(p, RSTART, RLENGTH)
         sub(/ *$/, "", word)
         if (word != "void") voids = voids (voids == "" ? "" : ", ") "(void)" word
+        if (p ~ /&/ && p !~ /&&/ && p !~ /(^|[^A-Za-z0-9_])const([^A-Za-z0-9_]|$)/)
+          outs = outs (outs == "" ? "" : ", ") word
       }
       p = ""
       if (ch == ")") break
@@ -69,7 +74,7 @@ function flush(   t, i, meta, low, s, name, decl1, params, depth, c, p, n, voids
     p = p ch
   }
   if (voids != "") voids = voids ";"
-  print id "\t" name "\t" meta "\t" title "\t" forbidden "\t" voids "\t" decl
+  print id "\t" name "\t" meta "\t" title "\t" forbidden "\t" voids "\t" decl "\t" outs
   id = ""
 }
 /^\/\/\/ \*\*Exercise [0-9]+\.[0-9]+[: ]/ {

@@ -8,6 +8,9 @@
 #      "N of N exercises pass";
 #   3. one planted mistake per lesson (SOA_PLANT, all in one run): its row names it, as the
 #      lesson's exercises.NN.planted.* test expects.
+# For each of the three, make grade's judge too (tests/support/recording.hpp): every lesson's
+# program run with --record, then its judge (exNN-judge, no student code) with --replay on the
+# record; the judge's rows (status and message) must be the run's, exercise by exercise.
 # The checkers of the last run stay in WORK/tests/, linked against the planted copy, for the
 # project tree's solution, planted and feedback tests. Without PLANTED (a student release),
 # the stubs alone.
@@ -65,7 +68,7 @@ function(build_tree dir)
   set(targets soa_exercise_main)
   foreach(lesson IN LISTS lessons)
     string(SUBSTRING "${lesson}" 0 2 nn)
-    list(APPEND targets ex${nn}-exercises)
+    list(APPEND targets ex${nn}-exercises ex${nn}-judge)
   endforeach()
   execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK} -j ${jobs} --target ${targets} ${ARGN}
                           -- -k 0
@@ -93,6 +96,52 @@ macro(fail what)
   message("FAIL: ${what}")
   math(EXPR failures "${failures} + 1")
 endmacro()
+
+# judged(<what> [VAR=value...]): every lesson's program of the tree run with --record (in the
+# environment given), then its judge with --replay: their --results rows must be the same.
+function(judged what)
+  foreach(dir IN LISTS lessons)
+    string(SUBSTRING "${dir}" 0 2 nn)
+    set(rec ${WORK}/judged/${nn})
+    file(REMOVE_RECURSE ${rec})
+    file(MAKE_DIRECTORY ${rec})
+    if(NOT EXISTS ${WORK}/tests/ex${nn}-exercises OR NOT EXISTS ${WORK}/tests/ex${nn}-judge)
+      fail("lesson ${nn}, ${what}, judged: ex${nn}-exercises or ex${nn}-judge was not built")
+      continue()
+    endif()
+    execute_process(COMMAND ${CMAKE_COMMAND} -E env ASAN_OPTIONS=detect_leaks=0 ${ARGN}
+                            ${WORK}/tests/ex${nn}-exercises --report --record ${rec}
+                            --results ${rec}/run.tsv
+                    OUTPUT_QUIET ERROR_QUIET)
+    execute_process(COMMAND ${WORK}/tests/ex${nn}-judge --report --replay ${rec}
+                            --results ${rec}/judge.tsv
+                    OUTPUT_QUIET ERROR_QUIET)
+    set(run "")
+    set(judge "")
+    if(EXISTS ${rec}/run.tsv AND EXISTS ${rec}/judge.tsv)
+      file(READ ${rec}/run.tsv run)
+      file(READ ${rec}/judge.tsv judge)
+    endif()
+    # The statuses, the third field of each row.
+    string(REPLACE ";" "," rows "${judge}")
+    string(REGEX MATCHALL "[^\n]+" rows "${rows}")
+    set(statuses "")
+    foreach(row IN LISTS rows)
+      if(row MATCHES "^[^\t]*\t[^\t]*\t([^\t]*)")
+        list(APPEND statuses "${CMAKE_MATCH_1}")
+      endif()
+    endforeach()
+    list(LENGTH statuses n)
+    if(run STREQUAL "" OR NOT run STREQUAL judge)
+      fail("lesson ${nn}, ${what}: the judge's rows are not the run's\nrun:\n${run}\njudge:\n${judge}")
+    else()
+      list(REMOVE_DUPLICATES statuses)
+      string(REPLACE ";" ", " statuses "${statuses}")
+      message("lesson ${nn}, ${what}, judged from the record: ${n} rows as the run's (${statuses})")
+    endif()
+  endforeach()
+  set(failures ${failures} PARENT_SCOPE)
+endfunction()
 
 file(GLOB lessons RELATIVE ${SRC}/exercises ${SRC}/exercises/[0-9][0-9]-*)
 list(SORT lessons)
@@ -129,6 +178,7 @@ foreach(dir IN LISTS lessons)
     fail("lesson ${nn}, the stubs: every row must say \"not done\":${bad}\n${report}")
   endif()
 endforeach()
+judged("the stubs")
 if(PROBES)
   execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK} --target exercise_probes
                   OUTPUT_VARIABLE out ERROR_VARIABLE out RESULT_VARIABLE rc)
@@ -165,6 +215,7 @@ foreach(dir IN LISTS lessons)
     fail("lesson ${nn}, the solutions, in the exercise configuration:\n${report}")
   endif()
 endforeach()
+judged("the solutions")
 
 # 3. The first planted mistake of each lesson that has any, all switched on in one run, each
 #    named in its lesson's row.
@@ -193,6 +244,7 @@ foreach(dir IN LISTS planted_lessons)
     fail("lesson ${nn}, planted ${id_${dir}}: the report does not match '${expect_${dir}}':\n${report}")
   endif()
 endforeach()
+judged("planted ${ids}" SOA_PLANT=${ids})
 
 if(failures GREATER 0)
   message(FATAL_ERROR "the exercise configuration: ${failures} failures")

@@ -18,6 +18,9 @@
 #    -DOBJDUMP=<objdump>) keeps each call as a relocation in its caller's section. Each
 #    exercise's function, and the student's own functions it calls, are searched for the
 #    calls its statement forbids; such a call is flagged before the program runs.
+# 5. The student's definitions of the exercises' functions are renamed soa_student_<name> in
+#    the same archive: the program reaches them through the lesson's recorders (make grade's
+#    record of the answers, tests/support/recording.hpp).
 cmake_policy(VERSION 3.25)
 foreach(v HEADER ARCHIVE OUT_ARCHIVE OUT_SRC NM OBJCOPY CXXFILT)
   if(NOT DEFINED ${v})
@@ -280,6 +283,31 @@ foreach(hit IN LISTS static_hits)
   string(APPEND owners "  \" ${ex} \",\n")
   string(APPEND hit_init "1, ")
   math(EXPR count "${count} + 1")
+endforeach()
+
+# 5. The student's own definitions of the exercises' functions, renamed soa_student_<name>
+#    (the mangled name's last part, _ZN3soa4exNN<length><name>...): the checker reaches them
+#    through the lesson's recorders (tests/support/recording.hpp), which take their names.
+execute_process(COMMAND ${NM} -g --defined-only --format=posix ${ARCHIVE} OUTPUT_VARIABLE defs
+                RESULT_VARIABLE rc ERROR_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "watch.cmake: ${NM} failed on ${ARCHIVE}")
+endif()
+string(REGEX MATCHALL "\n_ZN3soa4ex[0-9][0-9][1-9][0-9]*[A-Za-z_][A-Za-z0-9_]* [TW]" defined
+       "\n${defs}")
+set(renamed "")
+foreach(d IN LISTS defined)
+  string(REGEX REPLACE "^\n(_ZN3soa4ex[0-9][0-9])([1-9][0-9]*)(.*) [TW]$" "\\1;\\2;\\3" parts "${d}")
+  list(GET parts 0 prefix)
+  list(GET parts 1 length)
+  list(GET parts 2 rest)
+  string(SUBSTRING "${rest}" 0 ${length} fn)
+  string(SUBSTRING "${rest}" ${length} -1 tail)
+  if(fn IN_LIST exercise_functions AND NOT d IN_LIST renamed)
+    list(APPEND renamed "${d}")
+    string(LENGTH "soa_student_${fn}" new_length)
+    string(APPEND map "${prefix}${length}${fn}${tail} ${prefix}${new_length}soa_student_${fn}${tail}\n")
+  endif()
 endforeach()
 
 # 3. The renamed archive and the trampolines.

@@ -21,6 +21,13 @@
 # libraries are built again (exNN-exercises); the checker runs them with --report and
 # --results (tests/exercises/exercise_main.cpp), which says each exercise's status.
 #
+# The verdict is not that run's: the student's code is linked into it, and could rewrite it.
+# That run records the answers the student's functions give the checker (--record); the
+# judge, the same checker linked with no student code (exNN-judge), replays them and judges
+# (--replay, tests/support/recording.hpp). An exercise passes only if the judge says so and
+# the run saw nothing else wrong (a forbidden call, a limit reached); a record that does not
+# answer the judge's calls (the run stopped, or the code wrote into it) is never a pass.
+#
 # OUT (new, empty, or the output of an earlier run, which is replaced) receives:
 #   gradebook.csv       a row per student: the name, the points of each exercise, the total
 #   statuses.csv        the same rows with each exercise's status in words
@@ -291,8 +298,13 @@ else
     >"$work/logs/configure.log" 2>&1 ||
     die "the exercise tree does not configure (see $work/logs/configure.log)"
 fi
+grep -q '^SOA_WATCH_CALLS:BOOL=ON$' "$tree/CMakeCache.txt" 2>/dev/null ||
+  die "the exercise tree $tree does not watch the calls (x86-64 and binutils' nm, objcopy, c++filt): the grader's record of the answers needs it"
 targets=soa_exercise_main
-for l in $lessons; do targets="$targets ex$(echo "$l" | cut -c1-2)-tests"; done
+for l in $lessons; do
+  nn=$(echo "$l" | cut -c1-2)
+  targets="$targets ex$nn-tests ex$nn-record ex$nn-judge"
+done
 # shellcheck disable=SC2086
 cmake --build "$tree" -j "$jobs" --target $targets >"$work/logs/checkers.log" 2>&1 ||
   die "the library or a checker does not compile (see $work/logs/checkers.log)"
@@ -391,8 +403,8 @@ esc() { printf '%s\n' "$1" | tr -d '\000-\010\013-\037\177' | awk -f "$here/esca
 
 # run_lesson <scratch> <results copy> <runner's options...>: the lesson's checker program run
 # on the submission in the sandbox (its scratch folder <scratch>), its report added to the
-# feedback, a limit it was stopped at named there; its --results file copied to <results copy>
-# (empty when it wrote none).
+# feedback, a limit it was stopped at named there, the answers recorded in <scratch>; then the
+# judge's verdict on them (judge_lesson). <results copy> receives the verdict.
 run_lesson() {
   run_cases=$1
   run_copy=$2
@@ -402,7 +414,8 @@ run_lesson() {
   SOA_EXERCISE_CASES=$run_cases SOA_EXERCISE_HINTS=$work/hints \
     ASAN_OPTIONS=detect_leaks=0:max_allocation_size_mb=$lim_mem:hard_rss_limit_mb=$lim_mem \
     in_sandbox "$run_cases" "$prog" --report --header "$src/exercises/$l/exercises.hpp" \
-    --results "$run_cases/lesson.tsv" "$@" >>"$feedback" 2>"$work/logs/$i-ex$nn.stderr"
+    --results "$run_cases/lesson.tsv" --record "$run_cases" "$@" >>"$feedback" \
+    2>"$work/logs/$i-ex$nn.stderr"
   rc=$?
   case $rc in
     0 | 1) ;;
@@ -415,8 +428,47 @@ run_lesson() {
     153) echo "  the test program was stopped at a limit: a file (its output) of $lim_fsize MB" >>"$feedback" ;;
     *) echo "  the test program stopped (exit $rc; see $work/logs/$i-ex$nn.stderr)" >>"$feedback" ;;
   esac
-  [ -f "$run_cases/lesson.tsv" ] && [ ! -L "$run_cases/lesson.tsv" ] && cp "$run_cases/lesson.tsv" "$run_copy"
-  touch "$run_copy"
+  : >"$work/run.tsv"
+  [ -f "$run_cases/lesson.tsv" ] && [ ! -L "$run_cases/lesson.tsv" ] && cp "$run_cases/lesson.tsv" "$work/run.tsv"
+  judge_lesson "$run_cases" "$run_copy" "$@"
+}
+
+# judge_lesson <record folder> <verdict> <runner's options...>: the judge (the checker with no
+# student code, in the sandbox too: the record is the student's) replays the record; <verdict>
+# is its results, but where the run of the student's code saw worse (a forbidden call, a
+# limit, a crash after the answers it recorded) or the record does not answer the judge's
+# calls ("unjudged": that run's status, never a pass).
+judge_lesson() {
+  record=$1
+  verdict=$2
+  shift 2
+  judged=$record.judge
+  rm -rf "${judged:?}"
+  mkdir -p "$judged"
+  [ -z "$drop" ] || chown 65534:65534 "$judged"
+  SOA_EXERCISE_CASES=$judged SOA_EXERCISE_HINTS=$work/hints sandboxed "$judged" "$tree
+$work/hints
+$record" "$tree/tests/ex$nn-judge" --report --header "$src/exercises/$l/exercises.hpp" \
+    --results "$judged/lesson.tsv" --replay "$record" "$@" >"$work/logs/$i-ex$nn.judge" 2>&1 ||
+    echo "  the judge stopped (exit $?; see $work/logs/$i-ex$nn.judge)" >>"$feedback"
+  : >"$work/judge.tsv"
+  [ -f "$judged/lesson.tsv" ] && [ ! -L "$judged/lesson.tsv" ] && cp "$judged/lesson.tsv" "$work/judge.tsv"
+  awk -F '\t' -v OFS='\t' -v note="$work/judge.note" '
+    FILENAME == ARGV[1] { st[$1] = $3; msg[$1] = $4; name[$1] = $2; next }
+    {
+      id = $1; s = $3; m = $4
+      if (!(id in st)) { s2 = "unjudged"; m2 = "the judge gave no verdict" } else { s2 = st[id]; m2 = msg[id] }
+      if (s2 == "unjudged") {
+        if (s == "pass") { s = "crashed"; m = m2 "\\nthe answers your code recorded do not answer the checker'"'"'s calls" }
+      } else if (s2 != "pass" || s == "pass") { s = s2; m = m2 }
+      if (s != $3) { first = m; sub(/\\n.*/, "", first); print "  " id ": " s (first == "" ? "" : ": " first) > note }
+      print id, $2, s, m
+    }' "$work/judge.tsv" "$work/run.tsv" >"$verdict"
+  if [ -s "$work/judge.note" ]; then
+    echo "  The judge's verdict (the checker run again, without your code, on the answers it gave):" >>"$feedback"
+    cat "$work/judge.note" >>"$feedback"
+  fi
+  rm -f "$work/judge.note"
 }
 
 grade_one() {  # <entry> <kind>

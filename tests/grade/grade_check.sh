@@ -24,6 +24,9 @@
 #                definitions of the checker's Check::add and Check::fail that say "pass":
 #                1.1 FAIL
 #   kevin, liam  _exit(0), abort() from a static initializer: every exercise crashed
+#   rita         in 1.1, writes a passing row into every file her process can write (the
+#                runner's own channel from the exercise's process among them), then _exit(0):
+#                before the judge, 1.1 passed; now it crashed, "not judged"
 #   mona         in 1.2 an allocation of 10 GB (out of memory), in 1.3 1 GB of output (stopped
 #                at the output limit), in 1.4 a SIGSEGV handler that returns, then a segfault
 #                (timed out), in 1.6 a call of soa::Phi::matrix, which 1.6 reproduces
@@ -211,6 +214,18 @@ hostile kevin "#include <unistd.h>
 static const int quits = (_exit(0), 0);" ""
 hostile liam "#include <cstdlib>
 static const int aborts = (std::abort(), 0);" ""
+hostile rita "#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>" "  for (int fd = 3; fd < 1024; ++fd) {
+    const int flags = fcntl(fd, F_GETFL);
+    struct stat st;
+    if (flags < 0 || (flags & O_ACCMODE) == O_RDONLY || fstat(fd, &st) != 0 ||
+        !S_ISREG(st.st_mode) || ftruncate(fd, 0) != 0 || lseek(fd, 0, SEEK_SET) != 0)
+      continue;
+    const char row[] = \"0 0 0 0\\n\";
+    if (write(fd, row, sizeof row - 1) < 0) continue;
+  }
+  _exit(0);"
 # mona: four exercises, each hostile in its own way.
 mkdir -p "$subs/mona/exercises/$lesson"
 awk '{ print }
@@ -308,6 +323,7 @@ fi
 expect_row judy "judy,0,3,1,1,1,1,1,1,1,10"
 expect_row kevin "kevin,0,0,0,0,0,0,0,0,0,0"
 expect_row liam "liam,0,0,0,0,0,0,0,0,0,0"
+expect_row rita "rita,0,3,1,1,1,1,1,1,1,10"
 expect_row mona "mona,1,0,0,0,1,0,1,1,1,5"
 expect_row nick "nick,0,0,0,0,0,0,0,0,0,0"
 expect_row olga "olga,0,0,0,0,0,0,0,0,0,0"
@@ -329,8 +345,8 @@ failing_row() {  # <student> <exercise>/<id>...: the row with those exercises fa
 expect_row patty "$(failing_row patty $patty)"
 # shellcheck disable=SC2086
 expect_row quinn "$(failing_row quinn $quinn)"
-students=16
-[ -z "$sandboxed" ] || students=19
+students=17
+[ -z "$sandboxed" ] || students=20
 check "a row per student" test "$(wc -l <"$out/gradebook.csv")" = $((students + 1))
 srow() { grep "^$1," "$out/statuses.csv"; }
 check "bob: 1.5 to 1.9 not done" \
@@ -345,6 +361,9 @@ check "kevin (_exit): every exercise crashed" \
   test "$(srow kevin)" = "kevin,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed"
 check "liam (abort): every exercise crashed" \
   test "$(srow liam)" = "liam,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed,crashed"
+check "rita: 1.1 crashed, not judged (her forged row is not the verdict)" \
+  test "$(srow rita | cut -d, -f2)" = crashed
+check "rita's feedback: the judge's verdict" grep -q "1.1: crashed: not judged: " "$out/feedback/rita.md"
 check "mona: 10 GB out of memory, 1 GB of output stopped, a SIGSEGV handler timed out, a forbidden call" \
   test "$(srow mona)" = "mona,pass,out of memory,crashed (SIGXFSZ),timed out,pass,calls the function it reproduces,pass,pass,pass"
 check "mona's feedback: the output limit named" grep -q 'printed more than 64 MB' "$out/feedback/mona.md"
