@@ -337,3 +337,11 @@ asm(\".text\\n\"
 ${asm}  \"\");
 ")
 file(COPY_FILE ${OUT_SRC}.new ${OUT_SRC} ONLY_IF_DIFFERENT)
+# The calls step 4 found, "<exercise>\t<function>" a line, for make grade: known before any
+# student code runs, they count whatever the run of that code says (tests/grade/grade.sh).
+set(static_list "")
+foreach(hit IN LISTS static_hits)
+  string(REPLACE "|" "\t" hit "${hit}")
+  string(APPEND static_list "${hit}\n")
+endforeach()
+file(WRITE ${OUT_SRC}.static "${static_list}")

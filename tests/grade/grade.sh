@@ -437,7 +437,8 @@ run_lesson() {
 # student code, in the sandbox too: the record is the student's) replays the record; <verdict>
 # is its results, but where the run of the student's code saw worse (a forbidden call, a
 # limit, a crash after the answers it recorded) or the record does not answer the judge's
-# calls ("unjudged": that run's status, never a pass).
+# calls ("unjudged": that run's status, never a pass); and a forbidden call the build found
+# in the code (watch.cmake's step 4, which no student code can change) whatever the runs say.
 judge_lesson() {
   record=$1
   verdict=$2
@@ -453,17 +454,28 @@ $record" "$tree/tests/ex$nn-judge" --report --header "$src/exercises/$l/exercise
     echo "  the judge stopped (exit $?; see $work/logs/$i-ex$nn.judge)" >>"$feedback"
   : >"$work/judge.tsv"
   [ -f "$judged/lesson.tsv" ] && [ ! -L "$judged/lesson.tsv" ] && cp "$judged/lesson.tsv" "$work/judge.tsv"
+  # The forbidden calls the build found in the student's code (watch.cmake, step 4).
+  calls=$tree/tests/watch/ex$nn-exercises/watch.cpp.static
+  if [ ! -f "$calls" ]; then
+    calls=$work/no-calls
+    : >"$calls"
+  fi
   awk -F '\t' -v OFS='\t' -v note="$work/judge.note" '
-    FILENAME == ARGV[1] { st[$1] = $3; msg[$1] = $4; name[$1] = $2; next }
+    FILENAME == ARGV[1] { calls[$1] = calls[$1] (calls[$1] == "" ? "" : ", ") $2; next }
+    FILENAME == ARGV[2] { st[$1] = $3; msg[$1] = $4; name[$1] = $2; next }
     {
       id = $1; s = $3; m = $4
       if (!(id in st)) { s2 = "unjudged"; m2 = "the judge gave no verdict" } else { s2 = st[id]; m2 = msg[id] }
       if (s2 == "unjudged") {
         if (s == "pass") { s = "crashed"; m = m2 "\\nthe answers your code recorded do not answer the checker'"'"'s calls" }
       } else if (s2 != "pass" || s == "pass") { s = s2; m = m2 }
+      if ((id in calls) && s != "forbidden-call") {
+        s = "forbidden-call"
+        m = "your code calls " calls[id] ", which exercise " id " reproduces (its statement says: do not call it): the exercise is to compute it yourself\\n" m
+      }
       if (s != $3) { first = m; sub(/\\n.*/, "", first); print "  " id ": " s (first == "" ? "" : ": " first) > note }
       print id, $2, s, m
-    }' "$work/judge.tsv" "$work/run.tsv" >"$verdict"
+    }' "$calls" "$work/judge.tsv" "$work/run.tsv" >"$verdict"
   if [ -s "$work/judge.note" ]; then
     echo "  The judge's verdict (the checker run again, without your code, on the answers it gave):" >>"$feedback"
     cat "$work/judge.note" >>"$feedback"

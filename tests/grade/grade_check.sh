@@ -27,6 +27,9 @@
 #   rita         in 1.1, writes a passing row into every file her process can write (the
 #                runner's own channel from the exercise's process among them), then _exit(0):
 #                before the judge, 1.1 passed; now it crashed, "not judged"
+#   tess         in 1.6, calls soa::Phi::matrix, which 1.6 reproduces, then clears the
+#                watch's flags in her process: calls the function it reproduces (the build
+#                found the call)
 #   mona         in 1.2 an allocation of 10 GB (out of memory), in 1.3 1 GB of output (stopped
 #                at the output limit), in 1.4 a SIGSEGV handler that returns, then a segfault
 #                (timed out), in 1.6 a call of soa::Phi::matrix, which 1.6 reproduces
@@ -243,7 +246,16 @@ awk '{ print }
   >"$subs/mona/exercises/$lesson/exercises.cpp"
 [ "$(grep -c -E 'ten_gb|1 GB|SIGSEGV|phi_xy.matrix' "$subs/mona/exercises/$lesson/exercises.cpp")" = 5 ] ||
   { echo "FAIL: mona's functions 1.2, 1.3, 1.4 and 1.6 are not in $solution"; exit 1; }
-# patty and quinn: every planted mistake of lesson 1, one in each exercise.
+# tess: 1.6 calls soa::Phi::matrix, which it reproduces, then clears the watch's flags.
+mkdir -p "$subs/tess/exercises/$lesson"
+awk '{ print }
+  /#include "exercises.hpp"/ { print "extern \"C\" unsigned char soa_watch_hit[];\nextern \"C\" const int soa_watch_count;" }
+  /^Velocity reverse_velocity\(/ {
+    print "  (void)phi_xy.matrix();"
+    print "  for (int i = 0; i < soa_watch_count; ++i) soa_watch_hit[i] = 0;" }' "$solution" \
+  >"$subs/tess/exercises/$lesson/exercises.cpp"
+grep -q 'soa_watch_hit\[i\] = 0' "$subs/tess/exercises/$lesson/exercises.cpp" ||
+  { echo "FAIL: tess's 1.6 is not in $solution"; exit 1; }
 # patty and quinn: every planted mistake of lesson 1's checker, one in each exercise: patty has
 # the first of each exercise, quinn the second.
 sed -n 's|^soa_plant(\(1\.[0-9]*\) \([a-z0-9-]*\)$|\1/\2|p' "$src/tests/exercises/$lesson.cpp" >"$scratch/plants"
@@ -324,6 +336,7 @@ expect_row judy "judy,0,3,1,1,1,1,1,1,1,10"
 expect_row kevin "kevin,0,0,0,0,0,0,0,0,0,0"
 expect_row liam "liam,0,0,0,0,0,0,0,0,0,0"
 expect_row rita "rita,0,3,1,1,1,1,1,1,1,10"
+expect_row tess "tess,1,3,1,1,1,0,1,1,1,10"
 expect_row mona "mona,1,0,0,0,1,0,1,1,1,5"
 expect_row nick "nick,0,0,0,0,0,0,0,0,0,0"
 expect_row olga "olga,0,0,0,0,0,0,0,0,0,0"
@@ -345,8 +358,8 @@ failing_row() {  # <student> <exercise>/<id>...: the row with those exercises fa
 expect_row patty "$(failing_row patty $patty)"
 # shellcheck disable=SC2086
 expect_row quinn "$(failing_row quinn $quinn)"
-students=17
-[ -z "$sandboxed" ] || students=20
+students=18
+[ -z "$sandboxed" ] || students=21
 check "a row per student" test "$(wc -l <"$out/gradebook.csv")" = $((students + 1))
 srow() { grep "^$1," "$out/statuses.csv"; }
 check "bob: 1.5 to 1.9 not done" \
@@ -364,6 +377,8 @@ check "liam (abort): every exercise crashed" \
 check "rita: 1.1 crashed, not judged (her forged row is not the verdict)" \
   test "$(srow rita | cut -d, -f2)" = crashed
 check "rita's feedback: the judge's verdict" grep -q "1.1: crashed: not judged: " "$out/feedback/rita.md"
+check "tess: 1.6 calls the function it reproduces (the build found the call; she cleared the run's flags)" \
+  test "$(srow tess | cut -d, -f7)" = "calls the function it reproduces"
 check "mona: 10 GB out of memory, 1 GB of output stopped, a SIGSEGV handler timed out, a forbidden call" \
   test "$(srow mona)" = "mona,pass,out of memory,crashed (SIGXFSZ),timed out,pass,calls the function it reproduces,pass,pass,pass"
 check "mona's feedback: the output limit named" grep -q 'printed more than 64 MB' "$out/feedback/mona.md"
@@ -405,8 +420,8 @@ if [ -n "$sandboxed" ]; then
   check "uma: no line of /etc/shadow in her feedback" \
     sh -c '! grep -qE "(^|[ :])(root|daemon|nobody):[^ :]*:[0-9]*:" "$1"' - "$out/feedback/uma.md"
 fi
-passed=4
-[ -z "$sandboxed" ] || passed=5
+passed=5
+[ -z "$sandboxed" ] || passed=6
 check "class.md: 1.1 passes for $passed of $students" grep -q "^| 1\\.1 [^|]* | $passed | " "$out/class.md"
 check "class.md: nobody left out an exercise" grep -q '^None: every exercise was attempted' "$out/class.md"
 check "erin's feedback: no exercises/ folder" grep -q 'no exercises/ folder' "$out/feedback/erin.md"
