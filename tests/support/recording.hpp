@@ -136,6 +136,7 @@ inline void encode(std::string& o, const std::vector<bool>& v);
 inline void decode(Reader& r, std::vector<bool>& v);
 inline void encode(std::string& o, const std::string& s);
 inline void decode(Reader& r, std::string& s);
+inline void decode(Reader& r, bool& b);
 
 /// A struct recorded member by member: Members<T>::list() is the tuple of its members'
 /// pointers, in order. The library's are here; a lesson's are written by recording.sh.
@@ -193,6 +194,12 @@ std::enable_if_t<std::is_arithmetic_v<T> || std::is_enum_v<T>> encode(std::strin
 template <class T>
 std::enable_if_t<std::is_arithmetic_v<T> || std::is_enum_v<T>> decode(Reader& r, T& v) {
   r.get(&v, sizeof v);
+}
+/// A bool from any byte: a record's byte need not be 0 or 1.
+inline void decode(Reader& r, bool& b) {
+  unsigned char c = 0;
+  r.get(&c, 1);
+  b = c != 0;
 }
 template <class S, int R, int C, int O, int MR, int MC>
 void encode(std::string& o, const Eigen::Matrix<S, R, C, O, MR, MC>& m) {
